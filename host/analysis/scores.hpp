@@ -1,0 +1,13 @@
+// Accuracy scores of the study's Table 4.
+#pragma once
+#include <Eigen/Dense>
+
+namespace spreadmap::analysis {
+
+double rmse(const Eigen::VectorXd &truth, const Eigen::VectorXd &predicted);
+// 100 x RMSE / (max - min of the true values) [%]; NaN when the range is 0 or there are no values.
+double nrmse_percent(const Eigen::VectorXd &truth, const Eigen::VectorXd &predicted);
+// Pearson correlation coefficient; NaN when either side is constant or there are fewer than 2 values.
+double pearson(const Eigen::VectorXd &a, const Eigen::VectorXd &b);
+
+}  // namespace spreadmap::analysis

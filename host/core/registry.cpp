@@ -1,0 +1,138 @@
+#include "core/registry.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <boost/dll/runtime_symbol_info.hpp>
+#include <boost/dll/shared_library.hpp>
+#include <cstdlib>
+#include <set>
+
+#include "core/error.hpp"
+#include "core/suggest.hpp"
+
+namespace spreadmap {
+
+std::string LoadedPlugin::id() const { return std::string(descriptor->kind) + "/" + descriptor->name; }
+
+PluginRegistry::PluginRegistry(std::vector<fs::path> roots) : roots_(std::move(roots)) {}
+PluginRegistry::~PluginRegistry() = default;
+
+std::vector<fs::path> PluginRegistry::default_roots() {
+  std::vector<fs::path> roots;
+  if (const char *env = std::getenv("SPREADMAP_PLUGIN_PATH")) {
+    std::string s = env;
+    std::size_t pos = 0;
+    while (pos <= s.size()) {
+      const std::size_t next = s.find(':', pos);
+      const std::string part = s.substr(pos, next == std::string::npos ? std::string::npos : next - pos);
+      if (!part.empty()) roots.emplace_back(part);
+      if (next == std::string::npos) break;
+      pos = next + 1;
+    }
+  }
+  const fs::path exe = boost::dll::program_location().string();
+  roots.push_back(exe.parent_path().parent_path() / "lib" / "spreadmap" / "plugins");
+  return roots;
+}
+
+PluginRegistry &PluginRegistry::global() {
+  static PluginRegistry registry(default_roots());
+  return registry;
+}
+
+std::vector<fs::path> PluginRegistry::candidates(const std::string &kind, const std::string &name) const {
+  std::vector<fs::path> found;
+  for (const auto &root : roots_)
+    for (const fs::path &p : {root / kind / (name + ".so"), root / (name + ".so")}) {
+      std::error_code ec;
+      if (fs::is_regular_file(p, ec)) found.push_back(p);
+    }
+  return found;
+}
+
+std::vector<std::string> PluginRegistry::names(const std::string &kind) const {
+  std::set<std::string> out;
+  for (const auto &root : roots_) {
+    std::error_code ec;
+    const fs::path dir = root / kind;
+    if (!fs::is_directory(dir, ec)) continue;
+    for (const auto &entry : fs::directory_iterator(dir, ec))
+      if (entry.path().extension() == ".so") out.insert(entry.path().stem().string());
+  }
+  return {out.begin(), out.end()};
+}
+
+const LoadedPlugin &PluginRegistry::load_file(const fs::path &file, const std::string &expected_kind) {
+  const std::string key = fs::absolute(file).lexically_normal().string();
+  if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
+  auto lib = std::make_shared<boost::dll::shared_library>();
+  boost::dll::fs::error_code ec;
+  lib->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local, ec);
+  if (ec)
+    throw PluginError("error: cannot load plugin " + file.string() + ": " + ec.message() +
+                      "\n  is it a shared library built for this machine? rebuild it with this SDK");
+  if (!lib->has("spreadmap_plugin_v1"))
+    throw PluginError("error: " + file.string() +
+                      " is not a spreadmap plugin: it has no entry point 'spreadmap_plugin_v1'\n"
+                      "  plugins end with SPREADMAP_PLUGIN(...) or SPREADMAP_CONTACT_PLUGIN(...) and build with spreadmap_add_plugin()");
+  const auto entry = lib->get<const sm_plugin_v1 *()>("spreadmap_plugin_v1");
+  const sm_plugin_v1 *d = entry();
+  if (!d) throw PluginError("error: " + file.string() + ": its entry point returned no descriptor");
+  if (d->abi != SPREADMAP_PLUGIN_ABI)
+    throw PluginError("error: " + file.string() + " uses plugin ABI " + std::to_string(d->abi) +
+                      ", this host needs ABI " + std::to_string(SPREADMAP_PLUGIN_ABI) + ": rebuild it with this SDK");
+  const std::string stem = file.stem().string();
+  if (!expected_kind.empty() && expected_kind != d->kind)
+    throw PluginError("error: " + file.string() + " is a " + d->kind + " plugin, found where " + expected_kind +
+                      " plugins are searched: move it to a " + d->kind + "/ folder");
+  if (stem != d->name)
+    throw PluginError("error: " + file.string() + " registers the name '" + d->name +
+                      "', which differs from its file name: the .so stem and the registered name must be equal");
+  libraries_.push_back(lib);
+  return loaded_.emplace(key, LoadedPlugin{d, file}).first->second;
+}
+
+const LoadedPlugin &PluginRegistry::get(const std::string &kind, const std::string &name) {
+  const std::string id = kind + "/" + name;
+  if (auto it = loaded_.find(id); it != loaded_.end()) return it->second;
+  const auto files = candidates(kind, name);
+  if (files.empty()) {
+    const auto available = names(kind);
+    std::string msg = "unknown " + kind + " plugin '" + name + "'";
+    const std::string near = closest(name, available);
+    std::string roots;
+    for (const auto &r : roots_) roots += (roots.empty() ? "" : ", ") + (r / kind).string();
+    msg += "\n  " + (near.empty() ? std::string() : "did you mean '" + near + "'? ") + "available: " +
+           (available.empty() ? std::string("none") : join(available)) + " (searched " + roots + ")";
+    throw PluginError(msg);
+  }
+  const LoadedPlugin &p = load_file(files.front(), kind);
+  for (std::size_t i = 1; i < files.size(); ++i)
+    spdlog::info("{} from {} shadows {}", id, files.front().string(), files[i].string());
+  return loaded_.emplace(id, p).first->second;
+}
+
+PluginInstance::PluginInstance(const LoadedPlugin &plugin, const std::string &params_json, const std::string &where)
+    : plugin_(&plugin) {
+  sm_error err{0, {0}};
+  self_ = plugin.descriptor->create(params_json.c_str(), &err);
+  if (!self_)
+    throw PluginError("error: " + (where.empty() ? std::string() : where + ": ") + plugin.id() + ": " +
+                      (err.code ? err.text : "create() failed without saying why"));
+}
+
+PluginInstance &PluginInstance::operator=(PluginInstance &&o) noexcept {
+  if (this != &o) {
+    if (self_) plugin_->descriptor->destroy(self_);
+    plugin_ = o.plugin_;
+    self_ = o.self_;
+    o.self_ = nullptr;
+  }
+  return *this;
+}
+
+PluginInstance::~PluginInstance() {
+  if (self_) plugin_->descriptor->destroy(self_);
+}
+
+}  // namespace spreadmap

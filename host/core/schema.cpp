@@ -1,0 +1,238 @@
+#include "core/schema.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/suggest.hpp"
+#include "core/units.hpp"
+
+namespace spreadmap {
+namespace {
+
+const char *type_name(sm_param_type t) {
+  switch (t) {
+    case SM_NUMBER: return "number";
+    case SM_INTEGER: return "integer";
+    case SM_BOOLEAN: return "boolean";
+    case SM_ENUM: return "enum";
+    case SM_STRING: return "string";
+    case SM_TABLE: return "table";
+  }
+  return "?";
+}
+
+std::vector<std::string> split_choices(const char *choices) {
+  std::vector<std::string> out;
+  std::string s = choices ? choices : "";
+  std::size_t pos = 0;
+  while (pos <= s.size()) {
+    const std::size_t bar = s.find('|', pos);
+    out.push_back(s.substr(pos, bar == std::string::npos ? std::string::npos : bar - pos));
+    if (bar == std::string::npos) break;
+    pos = bar + 1;
+  }
+  return out;
+}
+
+std::string fmt_num(double v) {
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  return fmt::format("{:g}", v);
+}
+
+std::string range_text(const sm_param_v1 &p) {
+  return "[" + fmt_num(p.min) + ", " + fmt_num(p.max) + "]" + (p.unit && std::string(p.unit) != "-" ? std::string(" ") + p.unit : "");
+}
+
+}  // namespace
+
+const sm_param_v1 *SchemaView::find(const std::string &name) const {
+  for (std::size_t i = 0; i < n; ++i)
+    if (name == params[i].name) return &params[i];
+  return nullptr;
+}
+
+nlohmann::json yaml_to_json(const YAML::Node &node) {
+  if (!node.IsDefined() || node.IsNull()) return nullptr;
+  if (node.IsSequence()) {
+    auto a = nlohmann::json::array();
+    for (const auto &n : node) a.push_back(yaml_to_json(n));
+    return a;
+  }
+  if (node.IsMap()) {
+    auto o = nlohmann::json::object();
+    for (const auto &kv : node) o[kv.first.as<std::string>()] = yaml_to_json(kv.second);
+    return o;
+  }
+  const std::string s = node.Scalar();
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(s, &used);
+    if (used == s.size() && std::isfinite(v)) return v;
+  } catch (...) {
+  }
+  if (s == "true") return true;
+  if (s == "false") return false;
+  return s;
+}
+
+nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, const std::string &file,
+                              const std::string &key_path, Diagnostics &diag) {
+  const Location at = Location::of(file, value);
+  if (p.type == SM_TABLE) return yaml_to_json(value);
+  if (!value.IsScalar()) {
+    diag.error(at, key_path, fmt::format("expected a {} here, found a {}", type_name(p.type),
+                                         value.IsSequence() ? "list" : value.IsMap() ? "mapping" : "null"),
+               p.doc ? fmt::format("{}: {}", p.name, p.doc) : "");
+    return nullptr;
+  }
+  const std::string s = value.Scalar();
+  switch (p.type) {
+    case SM_NUMBER: {
+      double v;
+      try {
+        v = parse_in(s, p.unit ? p.unit : "-");
+      } catch (const std::invalid_argument &e) {
+        diag.error(at, key_path, e.what(), fmt::format("{} is {} in {}", p.name, p.doc ? p.doc : "a number", p.unit));
+        return nullptr;
+      }
+      if (v < p.min || v > p.max) {
+        diag.error(at, key_path, fmt::format("{} = {} is outside {}", p.name, s, range_text(p)),
+                   fmt::format("{}: {}", p.name, p.doc ? p.doc : ""));
+        return nullptr;
+      }
+      return v;
+    }
+    case SM_INTEGER: {
+      try {
+        std::size_t used = 0;
+        const long v = std::stol(s, &used);
+        if (used != s.size()) throw std::invalid_argument("x");
+        if (v < p.min || v > p.max) {
+          diag.error(at, key_path, fmt::format("{} = {} is outside {}", p.name, s, range_text(p)));
+          return nullptr;
+        }
+        return v;
+      } catch (...) {
+        diag.error(at, key_path, fmt::format("'{}' is not a whole number", s), fmt::format("{}: {}", p.name, p.doc));
+        return nullptr;
+      }
+    }
+    case SM_BOOLEAN: {
+      const std::string l = lower(s);
+      if (l == "true" || l == "yes" || l == "on") return true;
+      if (l == "false" || l == "no" || l == "off") return false;
+      diag.error(at, key_path, fmt::format("'{}' is not a boolean: write true or false", s));
+      return nullptr;
+    }
+    case SM_ENUM: {
+      const auto choices = split_choices(p.choices);
+      for (const auto &c : choices)
+        if (iequals(c, s)) return c;
+      const std::string near = closest(s, choices);
+      diag.error(at, key_path, fmt::format("'{}' is not one of {}", s, join(choices, ", ")),
+                 near.empty() ? "" : fmt::format("did you mean '{}'?", near));
+      return nullptr;
+    }
+    case SM_STRING: return s;
+    default: return nullptr;
+  }
+}
+
+nlohmann::json validate_params(const SchemaView &schema, const YAML::Node &section, const std::string &file,
+                               const std::string &key_path, Diagnostics &diag, const std::set<std::string> &skip,
+                               bool fill) {
+  auto out = nlohmann::json::object();
+  const std::string prefix = key_path.empty() ? "" : key_path + ".";
+  if (section.IsDefined() && !section.IsNull() && !section.IsMap()) {
+    diag.error(Location::of(file, section), key_path, "expected a mapping of parameters (key: value)");
+    return out;
+  }
+  std::vector<std::string> known;
+  for (std::size_t i = 0; i < schema.n; ++i) known.push_back(schema.params[i].name);
+  if (section.IsMap()) {
+    for (const auto &kv : section) {
+      const std::string key = kv.first.as<std::string>();
+      if (skip.count(key)) continue;
+      const sm_param_v1 *p = schema.find(key);
+      if (!p) {
+        std::vector<std::string> all = known;
+        all.insert(all.end(), skip.begin(), skip.end());
+        const std::string near = closest(key, all);
+        diag.error(Location::of(file, kv.first), prefix + key, "unknown key",
+                   (near.empty() ? std::string() : "did you mean '" + near + "'? ") + "known: " + join(all));
+        continue;
+      }
+      out[key] = validate_value(*p, kv.second, file, prefix + key, diag);
+    }
+  }
+  if (fill) fill_defaults(schema, out, Location::of(file, section), key_path, diag);
+  return out;
+}
+
+void fill_defaults(const SchemaView &schema, nlohmann::json &out, const Location &where,
+                   const std::string &key_path, Diagnostics &diag) {
+  const std::string prefix = key_path.empty() ? "" : key_path + ".";
+  for (std::size_t i = 0; i < schema.n; ++i) {
+    const sm_param_v1 &p = schema.params[i];
+    if (out.contains(p.name)) continue;
+    if (p.required) {
+      diag.error(where, prefix + p.name, "required value missing",
+                 fmt::format("add {}: <{}{}>  ({})", p.name, type_name(p.type),
+                             p.unit && std::string(p.unit) != "-" ? std::string(" in ") + p.unit : "", p.doc));
+      continue;
+    }
+    switch (p.type) {
+      case SM_NUMBER: out[p.name] = p.def; break;
+      case SM_INTEGER: out[p.name] = static_cast<long>(p.def); break;
+      case SM_BOOLEAN: out[p.name] = p.def != 0; break;
+      case SM_ENUM:
+      case SM_STRING: out[p.name] = p.def_text ? p.def_text : ""; break;
+      case SM_TABLE: out[p.name] = nullptr; break;
+    }
+  }
+}
+
+nlohmann::json schema_json(const sm_plugin_v1 &d) {
+  auto params = nlohmann::json::array();
+  for (std::uint32_t i = 0; i < d.n_params; ++i) {
+    const auto &p = d.params[i];
+    nlohmann::json e = {{"name", p.name}, {"type", type_name(p.type)}, {"unit", p.unit ? p.unit : "-"},
+                        {"doc", p.doc ? p.doc : ""}, {"required", p.required != 0}};
+    if (p.type == SM_NUMBER || p.type == SM_INTEGER) {
+      e["min"] = std::isinf(p.min) ? nlohmann::json(nullptr) : nlohmann::json(p.min);
+      e["max"] = std::isinf(p.max) ? nlohmann::json(nullptr) : nlohmann::json(p.max);
+    }
+    if (!p.required) {
+      if (p.type == SM_NUMBER) e["default"] = p.def;
+      if (p.type == SM_INTEGER) e["default"] = static_cast<long>(p.def);
+      if (p.type == SM_BOOLEAN) e["default"] = p.def != 0;
+      if (p.type == SM_ENUM || p.type == SM_STRING) e["default"] = p.def_text ? p.def_text : "";
+    }
+    if (p.type == SM_ENUM) e["choices"] = split_choices(p.choices);
+    params.push_back(e);
+  }
+  return {{"kind", d.kind}, {"name", d.name}, {"version", d.version}, {"summary", d.summary ? d.summary : ""},
+          {"params", params}};
+}
+
+std::string describe_schema(const sm_plugin_v1 &d) {
+  std::string out = fmt::format("{}/{} {} — {}\n", d.kind, d.name, d.version, d.summary ? d.summary : "");
+  out += fmt::format("  {:<26} {:<8} {:<9} {:<22} {:<12} {}\n", "parameter", "type", "unit", "range", "default", "meaning");
+  for (std::uint32_t i = 0; i < d.n_params; ++i) {
+    const auto &p = d.params[i];
+    std::string range, def;
+    if (p.type == SM_NUMBER || p.type == SM_INTEGER) range = "[" + fmt_num(p.min) + ", " + fmt_num(p.max) + "]";
+    if (p.type == SM_ENUM) range = p.choices ? p.choices : "";
+    if (p.required) def = "required";
+    else if (p.type == SM_NUMBER || p.type == SM_INTEGER) def = fmt_num(p.def);
+    else if (p.type == SM_BOOLEAN) def = p.def != 0 ? "true" : "false";
+    else if (p.def_text) def = p.def_text;
+    out += fmt::format("  {:<26} {:<8} {:<9} {:<22} {:<12} {}\n", p.name, type_name(p.type), p.unit ? p.unit : "-",
+                       range, def, p.doc ? p.doc : "");
+  }
+  return out;
+}
+
+}  // namespace spreadmap

@@ -1,0 +1,40 @@
+// Physical quantities as users write them: "250 um", "250um", "100 mm/s", "-20 rad/s",
+// "4430 kg/m^3", "9.81 m/s^2". Bare numbers are SI. Angles are dimensionless (rad = 1).
+#pragma once
+#include <array>
+#include <optional>
+#include <string>
+
+namespace spreadmap {
+
+// Exponents of length, mass and time.
+struct Dimension {
+  std::array<int, 3> e{0, 0, 0};
+  bool operator==(const Dimension &) const = default;
+  std::string str() const;  // "m/s", "kg/m^3", "1" for dimensionless
+};
+
+struct Unit {
+  double factor = 1.0;  // to SI
+  Dimension dim;
+};
+
+// Parses a unit expression ("mm/s", "kg/m^3", "1/s", "-"); nullopt when unknown. `why` says which
+// part was not understood.
+std::optional<Unit> parse_unit(const std::string &text, std::string *why = nullptr);
+
+struct Quantity {
+  double value = 0;      // in SI
+  bool has_unit = false;
+  Unit unit;
+};
+
+// "250 um" → 2.5e-4. Throws std::invalid_argument with a sentence on malformed input, unknown unit,
+// NaN or infinity.
+Quantity parse_quantity(const std::string &text);
+
+// Convenience: parses and converts to the SI unit `si_unit`, checking the dimension; bare numbers
+// are taken as SI. Throws std::invalid_argument naming both units on a dimension mismatch.
+double parse_in(const std::string &text, const std::string &si_unit);
+
+}  // namespace spreadmap

@@ -1,0 +1,65 @@
+// Little helpers for the checkpoint format: raw little-endian values and arrays, bounds-checked
+// on reading (a truncated or foreign file is a clear SetupError, never a crash).
+#pragma once
+#include <engine/errors.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <fmt/format.h>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+namespace spreadmap::engine {
+
+class BinaryWriter {
+ public:
+  template <class T> void value(const T &v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    buf_.append(reinterpret_cast<const char *>(&v), sizeof v);
+  }
+  template <class T> void array(const std::vector<T> &v) {
+    value<std::uint64_t>(v.size());
+    buf_.append(reinterpret_cast<const char *>(v.data()), v.size() * sizeof(T));
+  }
+  const std::string &bytes() const { return buf_; }
+
+ private:
+  std::string buf_;
+};
+
+class BinaryReader {
+ public:
+  BinaryReader(std::string bytes, std::string name) : buf_(std::move(bytes)), name_(std::move(name)) {}
+  template <class T> T value() {
+    T v;
+    need(sizeof v);
+    std::memcpy(&v, buf_.data() + pos_, sizeof v);
+    pos_ += sizeof v;
+    return v;
+  }
+  template <class T> void array(std::vector<T> &v) {
+    const auto n = value<std::uint64_t>();
+    if (n > buf_.size()) fail("an array length larger than the file");
+    need(n * sizeof(T));
+    v.resize(n);
+    std::memcpy(v.data(), buf_.data() + pos_, n * sizeof(T));
+    pos_ += n * sizeof(T);
+  }
+  bool at_end() const { return pos_ == buf_.size(); }
+  [[noreturn]] void fail(const std::string &what) const {
+    throw SetupError(fmt::format("{}: not a valid checkpoint ({} at byte {}); it may be truncated or from another "
+                                 "version: delete it to start the case afresh",
+                                 name_, what, pos_));
+  }
+
+ private:
+  void need(std::size_t n) const {
+    if (buf_.size() - pos_ < n) fail("unexpected end of file");
+  }
+  std::string buf_;
+  std::string name_;
+  std::size_t pos_ = 0;
+};
+
+}  // namespace spreadmap::engine

@@ -1,0 +1,126 @@
+#include <engine/csv_input.hpp>
+#include <engine/errors.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <fmt/format.h>
+#include <fstream>
+#include <optional>
+#include <string_view>
+
+namespace spreadmap::engine {
+
+namespace {
+
+constexpr std::array<std::string_view, 12> known = {"x",  "y",  "z",  "radius", "vx",   "vy",
+                                                    "vz", "wx", "wy", "wz",     "mass", "id"};
+constexpr std::size_t n_required = 4;
+
+std::string_view trim(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  return s;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (auto &c : out) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+struct Field {
+  std::string_view text;
+  std::size_t column;  // 1-based character position
+};
+
+std::vector<Field> split(std::string_view line) {
+  std::vector<Field> out;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t comma = line.find(',', begin);
+    const std::string_view raw = line.substr(begin, comma == std::string_view::npos ? std::string_view::npos : comma - begin);
+    std::size_t lead = 0;
+    while (lead < raw.size() && std::isspace(static_cast<unsigned char>(raw[lead]))) ++lead;
+    out.push_back({trim(raw), begin + lead + 1});
+    if (comma == std::string_view::npos) break;
+    begin = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+ParticleSet read_particles_csv(const std::filesystem::path &path) {
+  std::ifstream in(path);
+  if (!in) throw SetupError(fmt::format("{}: cannot open the particle file for reading", path.string()));
+  const std::string file = path.string();
+  std::string line;
+  std::size_t line_no = 0;
+  std::vector<int> slot;  // per CSV column: index into `known`
+  bool have_header = false;
+  ParticleSet s;
+  std::array<std::vector<double> *, 11> columns = {&s.x, &s.y, &s.z, &s.radius, &s.vx, &s.vy,
+                                                   &s.vz, &s.wx, &s.wy, &s.wz, &s.mass};
+  std::array<bool, 12> present{};
+  while (std::getline(in, line)) {
+    ++line_no;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::string_view body = trim(line);
+    if (body.empty() || body.front() == '#') continue;
+    const auto fields = split(line);
+    if (!have_header) {
+      for (const auto &f : fields) {
+        const std::string name = lower(f.text);
+        const auto it = std::find(known.begin(), known.end(), name);
+        if (it == known.end())
+          throw SetupError(fmt::format("{}:{}:{}: unknown column '{}'; allowed: x, y, z, radius (required), vx, vy, vz, "
+                                       "wx, wy, wz, mass, id",
+                                       file, line_no, f.column, f.text));
+        const int k = static_cast<int>(it - known.begin());
+        if (present[k])
+          throw SetupError(fmt::format("{}:{}:{}: column '{}' appears twice", file, line_no, f.column, f.text));
+        present[k] = true;
+        slot.push_back(k);
+      }
+      for (std::size_t k = 0; k < n_required; ++k)
+        if (!present[k])
+          throw SetupError(fmt::format("{}:{}:1: the header has no '{}' column; required: x, y, z, radius", file,
+                                       line_no, known[k]));
+      have_header = true;
+      continue;
+    }
+    if (fields.size() != slot.size())
+      throw SetupError(fmt::format("{}:{}:{}: {} values on this line, the header names {} columns", file, line_no,
+                                   fields.size() > slot.size() ? fields[slot.size()].column : line.size() + 1,
+                                   fields.size(), slot.size()));
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      const auto &f = fields[c];
+      double v = 0;
+      const auto res = std::from_chars(f.text.data(), f.text.data() + f.text.size(), v);
+      if (res.ec != std::errc{} || res.ptr != f.text.data() + f.text.size() || !std::isfinite(v))
+        throw SetupError(fmt::format("{}:{}:{}: column '{}' holds '{}', not a finite number", file, line_no, f.column,
+                                     known[slot[c]], f.text));
+      const int k = slot[c];
+      if (k == 3 && !(v > 0))
+        throw SetupError(fmt::format("{}:{}:{}: radius = {} m; a radius must be > 0", file, line_no, f.column, v));
+      if (k == 10 && !(v > 0))
+        throw SetupError(fmt::format("{}:{}:{}: mass = {} kg; a mass must be > 0", file, line_no, f.column, v));
+      if (k == 11) {
+        if (v < 0 || v >= 4294967295.0 || v != std::floor(v))
+          throw SetupError(fmt::format("{}:{}:{}: id = {}; an id must be a whole number in [0, 4294967294]", file,
+                                       line_no, f.column, f.text));
+        s.id.push_back(static_cast<std::uint32_t>(v));
+      } else {
+        columns[k]->push_back(v);
+      }
+    }
+  }
+  if (!have_header)
+    throw SetupError(fmt::format("{}:1:1: empty file; expected a header line such as 'x,y,z,radius'", file));
+  return s;
+}
+
+}  // namespace spreadmap::engine

@@ -1,0 +1,129 @@
+#include <engine/neighbour_list.hpp>
+#include <spreadmap/contact.hpp>
+
+#include <algorithm>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace spreadmap::engine {
+
+namespace {
+// Distinct cell coordinates among c-1, c, c+1 along one axis (wrapped when periodic).
+int axis_neighbours(int c, int n, bool periodic, int out[3]) {
+  int k = 0;
+  for (int d = -1; d <= 1; ++d) {
+    int q = c + d;
+    if (periodic) q = (q + n) % n;
+    else if (q < 0 || q >= n) continue;
+    bool seen = false;
+    for (int t = 0; t < k; ++t) seen = seen || out[t] == q;
+    if (!seen) out[k++] = q;
+  }
+  return k;
+}
+}  // namespace
+
+template <class Real>
+void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid,
+                                const std::vector<std::uint32_t> &cell_start, const std::vector<std::uint32_t> &cell,
+                                const Domain &domain, Real skin, unsigned history) {
+  start.swap(old_start_);
+  nbr.swap(old_nbr_);
+  hist.swap(old_hist_);
+  const std::size_t n = p.size();
+  start.assign(n + 1, 0);
+  const Real len[3] = {Real(domain.length(0)), Real(domain.length(1)), Real(domain.length(2))};
+  const bool per[3] = {domain.periodic[0], domain.periodic[1], domain.periodic[2]};
+
+#ifdef _OPENMP
+  const int max_threads = omp_get_max_threads();
+#else
+  const int max_threads = 1;
+#endif
+  if (static_cast<int>(thread_nbr_.size()) < max_threads) thread_nbr_.resize(max_threads);
+
+#pragma omp parallel
+  {
+#ifdef _OPENMP
+    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+#else
+    const int t = 0, nt = 1;
+#endif
+    const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    auto &buf = thread_nbr_[t];
+    buf.clear();
+    struct Range { std::uint32_t begin, end; } ranges[27];
+    int n_ranges = 0;
+    std::uint32_t current_cell = no_index;
+    for (std::size_t i = lo; i < hi; ++i) {
+      if (cell[i] != current_cell) {  // particles are sorted by cell: recompute only on a new cell
+        current_cell = cell[i];
+        const int cx = int(current_cell % grid.n[0]), cy = int((current_cell / grid.n[0]) % grid.n[1]),
+                  cz = int(current_cell / (std::size_t(grid.n[0]) * grid.n[1]));
+        int ax[3], ay[3], az[3];
+        const int kx = axis_neighbours(cx, grid.n[0], grid.periodic[0], ax);
+        const int ky = axis_neighbours(cy, grid.n[1], grid.periodic[1], ay);
+        const int kz = axis_neighbours(cz, grid.n[2], grid.periodic[2], az);
+        n_ranges = 0;
+        for (int a = 0; a < kz; ++a)
+          for (int b = 0; b < ky; ++b)
+            for (int c = 0; c < kx; ++c) {
+              const std::size_t q = (std::size_t(az[a]) * grid.n[1] + ay[b]) * grid.n[0] + ax[c];
+              if (cell_start[q] == cell_start[q + 1]) continue;
+              ranges[n_ranges++] = {cell_start[q], cell_start[q + 1]};
+            }
+        // Ascending cell order, so the neighbours of i come out sorted by index.
+        std::sort(ranges, ranges + n_ranges, [](const Range &a, const Range &b) { return a.begin < b.begin; });
+      }
+      const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i] + skin;
+      std::uint32_t count = 0;
+      for (int q = 0; q < n_ranges; ++q) {
+        for (std::uint32_t j = ranges[q].begin; j < ranges[q].end; ++j) {
+          const Real dx = wrap(xi - p.x[j], len[0], per[0]);
+          const Real dy = wrap(yi - p.y[j], len[1], per[1]);
+          const Real dz = wrap(zi - p.z[j], len[2], per[2]);
+          const Real reach = ri + p.r[j];
+          if (dx * dx + dy * dy + dz * dz < reach * reach && j != i) {
+            buf.push_back(j);
+            ++count;
+          }
+        }
+      }
+      start[i + 1] = count;
+    }
+#pragma omp barrier
+#pragma omp single
+    {
+      for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+      nbr.resize(start[n]);
+      hist.assign(std::size_t(start[n]) * history, Real(0));
+    }
+    std::copy(buf.begin(), buf.end(), nbr.begin() + start[lo]);
+  }
+
+  if (history == 0 || old_nbr_.empty()) return;
+  // Carry history: the same (i, j) pair of particles in the previous list, found by old indices.
+  const std::size_t old_n = old_start_.empty() ? 0 : old_start_.size() - 1;
+#pragma omp parallel for schedule(static)
+  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+    const std::size_t i = static_cast<std::size_t>(ii);
+    const std::uint32_t oi = p.list_index[i];
+    if (oi == no_index || oi >= old_n) continue;
+    const std::uint32_t ob = old_start_[oi], oe = old_start_[oi + 1];
+    for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
+      const std::uint32_t oj = p.list_index[nbr[k]];
+      if (oj == no_index) continue;
+      for (std::uint32_t ok = ob; ok < oe; ++ok) {
+        if (old_nbr_[ok] != oj) continue;
+        std::copy_n(old_hist_.begin() + std::size_t(ok) * history, history, hist.begin() + std::size_t(k) * history);
+        break;
+      }
+    }
+  }
+}
+
+template class NeighbourList<double>;
+template class NeighbourList<float>;
+
+}  // namespace spreadmap::engine

@@ -1,0 +1,40 @@
+// Full (both-direction) Verlet list in CSR form over cell-sorted particles, with contact history
+// carried from the previous list by particle identity.
+//
+// Determinism: the neighbours of i are listed in a fixed order (neighbour cells in a fixed order,
+// particles within a cell by index), a function of the state only; threads build contiguous
+// blocks of particles that are concatenated in particle order, so the list is the same for any
+// thread count.
+#pragma once
+#include <engine/cell_grid.hpp>
+#include <engine/particle_arrays.hpp>
+#include <spreadmap/batch.hpp>
+
+#include <vector>
+
+namespace spreadmap::engine {
+
+template <class Real> class NeighbourList {
+ public:
+  // p must be sorted by cell: cell_start[c] .. cell_start[c + 1] are the particles of cell c and
+  // cell[i] is the cell of particle i. p.list_index[i] is i's index in the previous list (no_index
+  // for particles it did not know); history values of pairs present in both lists are copied, new
+  // pairs start at zero. Lists j when |x_i - x_j| < r_i + r_j + skin (minimum image).
+  void build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid, const std::vector<std::uint32_t> &cell_start,
+             const std::vector<std::uint32_t> &cell, const Domain &domain, Real skin, unsigned history);
+
+  PairList<Real> view() { return {start.data(), nbr.data(), hist.data()}; }
+  std::size_t entries() const { return nbr.size(); }
+  void clear() { start.clear(); nbr.clear(); hist.clear(); }
+
+  // The list itself (public for checkpoints).
+  std::vector<std::uint32_t> start, nbr;
+  std::vector<Real> hist;
+
+ private:
+  std::vector<std::uint32_t> old_start_, old_nbr_;
+  std::vector<Real> old_hist_;
+  std::vector<std::vector<std::uint32_t>> thread_nbr_;
+};
+
+}  // namespace spreadmap::engine

@@ -1,0 +1,30 @@
+// ParticleSet: the plain exchange format between the engine, files and other stages. One entry per
+// particle in every non-empty column, SI units. Optional columns may be empty (meaning zero, or for
+// `mass`, "derive from a density"; for `id`, "number them").
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace spreadmap::engine {
+
+struct ParticleSet {
+  std::vector<double> x, y, z;     // centre [m]
+  std::vector<double> vx, vy, vz;  // velocity [m/s]         (optional)
+  std::vector<double> wx, wy, wz;  // angular velocity [rad/s] (optional)
+  std::vector<double> radius;      // [m]
+  std::vector<double> mass;        // [kg]                   (optional)
+  std::vector<std::uint32_t> id;   // stable identity         (optional)
+
+  std::size_t size() const { return x.size(); }
+  // Throws SetupError naming the first column whose length differs from x (empty optional columns
+  // are fine) or the first non-finite / non-positive value where one is not allowed. `what` names
+  // the source in the message (a file, "add_particles").
+  void validate(const std::string &what) const;
+  // Fills empty optional columns: zeros for velocities, ids first_id, first_id + 1, ... ; masses
+  // from `density` when density > 0.
+  void fill_defaults(double density, std::uint32_t first_id);
+};
+
+}  // namespace spreadmap::engine

@@ -1,0 +1,45 @@
+// Run settings of a Simulation. SI units.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+namespace spreadmap::engine {
+
+struct Settings {
+  // Time step [s]. 0 = automatic: dt_safety * critical_dt(). A requested step above critical_dt()
+  // is refused (SetupError with both numbers) unless allow_unstable_dt is set.
+  double dt = 0;
+  // Fraction of the critical step used by the automatic step. 0.2 gives ~15 steps per contact of an
+  // undamped linear spring (pi / (0.2 * 2)): well resolved, the usual DEM practice (1/10..1/50 t_c).
+  double dt_safety = 0.2;
+  // For tests and studies of the stability limit only: accept dt above critical_dt().
+  bool allow_unstable_dt = false;
+
+  std::array<double, 3> gravity{0, 0, -9.81};  // [m/s^2]
+
+  // Verlet skin [m]: neighbours are listed up to r_i + r_j + skin; the list is rebuilt when some
+  // particle has moved more than skin / 2. 0 = automatic: skin_fraction * largest diameter.
+  double skin = 0;
+  double skin_fraction = 0.2;
+
+  // Run-time checks, every check_every steps: a pair or wall overlap above overlap_limit times the
+  // (smaller) diameter stops the run, and so does any particle faster than speed_limit (0 =
+  // automatic: 10 x the fastest physical speed of the scene: free fall across the domain, wall and
+  // geometry surface speeds, initial speeds). NaN or infinity is looked for every step.
+  double overlap_limit = 0.1;
+  double speed_limit = 0;
+  std::uint32_t check_every = 10;
+
+  // Scenes with fewer particles than this step on one thread: below it, starting OpenMP teams
+  // (~20 per step) costs more than the work, and on a busy machine much more. Results do not
+  // depend on it (the engine is deterministic for any thread count). 0: always all threads.
+  std::size_t parallel_min_particles = 2000;
+
+  // Where the engine says what it decided (rotation skipped, time step chosen). Empty: spdlog::info.
+  std::function<void(const std::string &)> log;
+};
+
+}  // namespace spreadmap::engine

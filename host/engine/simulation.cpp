@@ -1,0 +1,647 @@
+#include <engine/cell_grid.hpp>
+#include <engine/errors.hpp>
+#include <engine/simulation.hpp>
+#include <engine/stability.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fmt/format.h>
+#include <limits>
+#include <spdlog/spdlog.h>
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+namespace spreadmap::engine {
+
+namespace {
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+// Runs the enclosing scope on one OpenMP thread when asked (small scenes), restoring the caller's
+// thread count on exit, exceptions included. Affects only the calling thread's parallel regions.
+class SerialScope {
+ public:
+  explicit SerialScope(bool serial) {
+#ifdef _OPENMP
+    if (serial && omp_get_max_threads() > 1) {
+      saved_ = omp_get_max_threads();
+      omp_set_num_threads(1);
+    }
+#else
+    (void)serial;
+#endif
+  }
+  ~SerialScope() {
+#ifdef _OPENMP
+    if (saved_ > 0) omp_set_num_threads(saved_);
+#endif
+  }
+  SerialScope(const SerialScope &) = delete;
+  SerialScope &operator=(const SerialScope &) = delete;
+
+ private:
+  int saved_ = 0;
+};
+
+void check_law(const ContactLaw &law, const std::string &what) {
+  if (!law.ops || !law.ops->natural_frequency || !law.ops->damping_ratio || !law.ops->makes_torque ||
+      !law.ops->pairs_f64 || !law.ops->pairs_f32 || !law.ops->walls_f64 || !law.ops->walls_f32)
+    throw SetupError(fmt::format("{}: the contact law has no complete ops table (a null function pointer); "
+                                 "bind a contact plugin built with this SDK",
+                                 what));
+}
+}  // namespace
+
+template <class Real>
+Simulation<Real>::Simulation(const Domain &domain, ContactLaw pair_law, Settings settings)
+    : domain_(domain), pair_law_(pair_law), settings_(std::move(settings)) {
+  check_law(pair_law_, "particle-particle contact");
+  for (int a = 0; a < 3; ++a)
+    if (!(domain_.hi[a] > domain_.lo[a]) || !std::isfinite(domain_.lo[a]) || !std::isfinite(domain_.hi[a]))
+      throw SetupError(fmt::format("domain: axis {} spans [{}, {}] m; hi must be finite and greater than lo",
+                                   "xyz"[a], domain_.lo[a], domain_.hi[a]));
+  if (!(settings_.dt >= 0) || !(settings_.dt_safety > 0) || !(settings_.dt_safety <= 1))
+    throw SetupError(fmt::format("settings: dt = {} s and dt_safety = {}: need dt >= 0 (0 = automatic) and 0 < "
+                                 "dt_safety <= 1",
+                                 settings_.dt, settings_.dt_safety));
+  if (!(settings_.overlap_limit > 0) || settings_.check_every == 0)
+    throw SetupError("settings: overlap_limit must be > 0 and check_every >= 1");
+  list_.start.assign(1, 0);
+}
+
+template <class Real> void Simulation<Real>::log(const std::string &message) const {
+  if (settings_.log) settings_.log(message);
+  else spdlog::info("{}", message);
+}
+
+template <class Real> void Simulation<Real>::WallSlot::resize(std::size_t n) {
+  for (auto *c : {&overlap, &nx, &ny, &nz, &vx, &vy, &vz}) c->resize(n, Real(0));
+  hist.resize(n * history, Real(0));
+}
+
+template <class Real> template <class F> void Simulation<Real>::for_each_wall_slot(F &&f) {
+  for (auto &pl : planes_) f(pl.slot);
+  for (auto &g : geometries_) f(g.slot);
+}
+
+template <class Real> void Simulation<Real>::resize_walls() {
+  const std::size_t n = p_.size();
+  for_each_wall_slot([n](WallSlot &s) { s.resize(n); });
+}
+
+// ---------------------------------------------------------------------------------------------
+// particles and walls
+
+template <class Real> void Simulation<Real>::add_particles(ParticleSet set, double density) {
+  set.validate("add_particles");
+  if (set.mass.empty() && !(density > 0))
+    throw SetupError("add_particles: the set has no mass column and no density was given; give density [kg/m^3]");
+  set.fill_defaults(density, next_id_);
+  const std::size_t old_n = p_.size(), n = old_n + set.size();
+  if (n >= no_index) throw SetupError("add_particles: more than 4e9 particles");
+  p_.resize(n);
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    double pos[3] = {set.x[k], set.y[k], set.z[k]};
+    for (int a = 0; a < 3; ++a) {
+      if (domain_.periodic[a]) {
+        const double l = domain_.length(a);
+        pos[a] = domain_.lo[a] + (pos[a] - domain_.lo[a]) - std::floor((pos[a] - domain_.lo[a]) / l) * l;
+        if (pos[a] >= domain_.hi[a]) pos[a] = domain_.lo[a];
+      } else if (pos[a] < domain_.lo[a] || pos[a] >= domain_.hi[a]) {
+        throw SetupError(fmt::format("add_particles: particle {} (id {}) has {} = {} m, outside the open domain "
+                                     "axis [{}, {}) m; move it inside or make the axis periodic",
+                                     k, set.id[k], "xyz"[a], pos[a], domain_.lo[a], domain_.hi[a]));
+      }
+    }
+    const std::size_t i = old_n + k;
+    p_.x[i] = Real(pos[0]); p_.y[i] = Real(pos[1]); p_.z[i] = Real(pos[2]);
+    p_.vx[i] = Real(set.vx[k]); p_.vy[i] = Real(set.vy[k]); p_.vz[i] = Real(set.vz[k]);
+    p_.wx[i] = Real(set.wx[k]); p_.wy[i] = Real(set.wy[k]); p_.wz[i] = Real(set.wz[k]);
+    p_.r[i] = Real(set.radius[k]);
+    p_.m[i] = Real(set.mass[k]);
+    p_.inv_m[i] = Real(1.0 / set.mass[k]);
+    p_.inv_i[i] = Real(1.0 / (0.4 * set.mass[k] * set.radius[k] * set.radius[k]));
+    p_.id[i] = set.id[k];
+    p_.list_index[i] = no_index;
+    next_id_ = std::max(next_id_, set.id[k] + 1);
+  }
+  resize_walls();
+  step_resolved_ = list_valid_ = forces_valid_ = false;
+}
+
+template <class Real> ParticleSet Simulation<Real>::state() const {
+  ParticleSet s;
+  const std::size_t n = p_.size();
+  auto copy = [n](const std::vector<Real> &from, std::vector<double> &to) { to.assign(from.begin(), from.begin() + n); };
+  copy(p_.x, s.x); copy(p_.y, s.y); copy(p_.z, s.z);
+  copy(p_.vx, s.vx); copy(p_.vy, s.vy); copy(p_.vz, s.vz);
+  copy(p_.wx, s.wx); copy(p_.wy, s.wy); copy(p_.wz, s.wz);
+  copy(p_.r, s.radius); copy(p_.m, s.mass);
+  s.id = p_.id;
+  return s;
+}
+
+template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wall) {
+  check_law(wall.law, "plane wall '" + wall.name + "'");
+  const double len = std::sqrt(wall.normal[0] * wall.normal[0] + wall.normal[1] * wall.normal[1] +
+                               wall.normal[2] * wall.normal[2]);
+  if (!(len > 0) || !std::isfinite(len))
+    throw SetupError(fmt::format("plane wall '{}': normal ({}, {}, {}) must be a finite non-zero vector", wall.name,
+                                 wall.normal[0], wall.normal[1], wall.normal[2]));
+  for (auto &c : wall.normal) c /= len;
+  PlaneSlot s{std::move(wall), {}};
+  s.slot.history = s.wall.law.ops->history;
+  s.slot.resize(p_.size());
+  planes_.push_back(std::move(s));
+  step_resolved_ = forces_valid_ = false;
+  return planes_.size() - 1;
+}
+
+template <class Real> std::size_t Simulation<Real>::add_geometry(GeometryWall geometry) {
+  check_law(geometry.law, "geometry '" + geometry.name + "'");
+  if (!geometry.ops || !geometry.ops->contacts_f64 || !geometry.ops->contacts_f32)
+    throw SetupError(fmt::format("geometry '{}': no contacts function in its ops table", geometry.name));
+  GeometrySlot s{std::move(geometry), {}};
+  s.slot.history = s.geometry.law.ops->history;
+  s.slot.resize(p_.size());
+  geometries_.push_back(std::move(s));
+  step_resolved_ = forces_valid_ = false;
+  return geometries_.size() - 1;
+}
+
+template <class Real> void Simulation<Real>::set_plane_wall_active(std::size_t i, bool active) {
+  auto &pl = planes_.at(i);
+  if (pl.wall.active == active) return;
+  pl.wall.active = active;
+  std::fill(pl.slot.hist.begin(), pl.slot.hist.end(), Real(0));
+  std::fill(pl.slot.overlap.begin(), pl.slot.overlap.end(), Real(0));
+  pl.slot.touched = false;
+  forces_valid_ = false;
+}
+
+template <class Real>
+void Simulation<Real>::set_plane_wall_velocity(std::size_t i, const std::array<double, 3> &velocity) {
+  planes_.at(i).wall.velocity = velocity;
+}
+
+// ---------------------------------------------------------------------------------------------
+// time step
+
+template <class Real> double Simulation<Real>::critical_dt() const {
+  const std::size_t n = p_.size();
+  if (n == 0) return inf;
+  std::size_t light = 0, heavy = 0;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (p_.m[i] < p_.m[light]) light = i;
+    if (p_.m[i] > p_.m[heavy]) heavy = i;
+  }
+  const double m[2] = {double(p_.m[light]), double(p_.m[heavy])}, r[2] = {double(p_.r[light]), double(p_.r[heavy])};
+  double best = inf;
+  if (n >= 2) {
+    for (int a = 0; a < 2; ++a)
+      for (int b = a; b < 2; ++b)
+        best = std::min(best, contact_critical_dt(pair_law_, m[a] * m[b] / (m[a] + m[b]), r[a] * r[b] / (r[a] + r[b])));
+  }
+  auto wall = [&](const ContactLaw &law) {
+    for (int a = 0; a < 2; ++a) best = std::min(best, contact_critical_dt(law, m[a], r[a]));
+  };
+  for (const auto &pl : planes_) wall(pl.wall.law);
+  for (const auto &g : geometries_) wall(g.geometry.law);
+  return best;
+}
+
+template <class Real> double Simulation<Real>::dt() {
+  if (!step_resolved_) resolve_step();
+  return dt_;
+}
+
+template <class Real> void Simulation<Real>::resolve_step() {
+  const double crit = critical_dt();
+  if (settings_.dt > 0) {
+    if (settings_.dt > crit && !settings_.allow_unstable_dt)
+      throw SetupError(fmt::format("time step dt = {:.6g} s is above the critical step dt_crit = {:.6g} s of this "
+                                   "scene's contacts (velocity-Verlet with damping); use dt <= {:.6g} s, or dt: 0 for "
+                                   "the automatic {:.3g} x dt_crit = {:.6g} s",
+                                   settings_.dt, crit, crit, settings_.dt_safety, settings_.dt_safety * crit));
+    dt_ = settings_.dt;
+  } else {
+    if (!std::isfinite(crit))
+      throw SetupError("cannot choose the time step automatically: no particles, or no contact law with a stiffness; "
+                       "add particles first or set dt");
+    dt_ = settings_.dt_safety * crit;
+  }
+  double d_max = 0, v_max = 0;
+  for (std::size_t i = 0; i < p_.size(); ++i) {
+    d_max = std::max(d_max, 2.0 * double(p_.r[i]));
+    v_max = std::max(v_max, std::sqrt(double(p_.vx[i]) * p_.vx[i] + double(p_.vy[i]) * p_.vy[i] +
+                                      double(p_.vz[i]) * p_.vz[i]));
+  }
+  skin_ = settings_.skin > 0 ? settings_.skin : settings_.skin_fraction * d_max;
+  // The fastest physical speed of the scene: free fall across the domain, moving surfaces, the
+  // initial speeds. Ten times that is an explosion, not physics.
+  const double g = std::sqrt(settings_.gravity[0] * settings_.gravity[0] + settings_.gravity[1] * settings_.gravity[1] +
+                             settings_.gravity[2] * settings_.gravity[2]);
+  const double diag = std::sqrt(domain_.length(0) * domain_.length(0) + domain_.length(1) * domain_.length(1) +
+                                domain_.length(2) * domain_.length(2));
+  double v_phys = std::max(std::sqrt(2 * g * diag), v_max);
+  for (const auto &pl : planes_)
+    v_phys = std::max(v_phys, std::sqrt(pl.wall.velocity[0] * pl.wall.velocity[0] + pl.wall.velocity[1] * pl.wall.velocity[1] +
+                                        pl.wall.velocity[2] * pl.wall.velocity[2]));
+  for (const auto &ge : geometries_)
+    if (ge.geometry.ops->max_surface_speed) v_phys = std::max(v_phys, ge.geometry.ops->max_surface_speed(ge.geometry.self));
+  speed_limit_ = settings_.speed_limit > 0 ? settings_.speed_limit : 10.0 * std::max(v_phys, 1e-3);
+
+  bool torque = pair_law_.ops->makes_torque(pair_law_.self) != 0;
+  for (const auto &pl : planes_) torque = torque || pl.wall.law.ops->makes_torque(pl.wall.law.self) != 0;
+  for (const auto &ge : geometries_) torque = torque || ge.geometry.law.ops->makes_torque(ge.geometry.law.self) != 0;
+  if (rotate_ != torque || !step_resolved_) {
+    if (!torque) log("engine: no contact law makes torque: rotation is not integrated (angular velocities stay as given)");
+  }
+  rotate_ = torque;
+  log(fmt::format("engine: dt = {:.4g} s = {:.3g} x dt_crit (dt_crit = {:.4g} s); skin = {:.3g} m; speed limit {:.3g} m/s",
+                  dt_, dt_ / crit, crit, skin_, speed_limit_));
+  step_resolved_ = true;
+  list_valid_ = false;  // the skin may have changed
+}
+
+// ---------------------------------------------------------------------------------------------
+// neighbour list
+
+template <class Real> void Simulation<Real>::rebuild_list() {
+  const std::size_t n = p_.size();
+  ++counters_.list_builds;
+  list_valid_ = true;
+  if (n == 0) {
+    list_.clear();
+    list_.start.assign(1, 0);
+    return;
+  }
+  double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf}, r_max = 0;
+  {
+    Real lx = Real(inf), ly = Real(inf), lz = Real(inf), hx = Real(-inf), hy = Real(-inf), hz = Real(-inf), rm = 0;
+#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz, rm)
+    for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      lx = std::min(lx, p_.x[i]); ly = std::min(ly, p_.y[i]); lz = std::min(lz, p_.z[i]);
+      hx = std::max(hx, p_.x[i]); hy = std::max(hy, p_.y[i]); hz = std::max(hz, p_.z[i]);
+      rm = std::max(rm, p_.r[i]);
+    }
+    lo[0] = lx; lo[1] = ly; lo[2] = lz; hi[0] = hx; hi[1] = hy; hi[2] = hz; r_max = rm;
+  }
+  const double reach = 2 * r_max + skin_;
+  for (int a = 0; a < 3; ++a)
+    if (domain_.periodic[a] && domain_.length(a) < 2 * reach)
+      throw SetupError(fmt::format("domain: the periodic length along {} ({:.4g} m) must be at least twice the largest "
+                                   "diameter + skin ({:.4g} m); widen the domain or lower the skin",
+                                   "xyz"[a], domain_.length(a), reach));
+  const CellGrid<Real> grid = make_cell_grid<Real>(domain_, lo, hi, reach, n);
+  const std::size_t n_cells = grid.count();
+
+  // Stable counting sort by cell.
+  cell_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    cell_[i] = grid.cell_of(p_.x[i], p_.y[i], p_.z[i]);
+  }
+  cell_start_.assign(n_cells + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_[i] + 1];
+  for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
+  perm_.resize(n);
+  cell_sorted_.resize(n);
+  {
+    scratch_index_.assign(cell_start_.begin(), cell_start_.end() - 1);  // next free slot per cell
+    for (std::size_t i = 0; i < n; ++i) {
+      const std::uint32_t slot = scratch_index_[cell_[i]]++;
+      perm_[slot] = static_cast<std::uint32_t>(i);
+      cell_sorted_[slot] = cell_[i];
+    }
+  }
+  bool identity = true;
+  for (std::size_t i = 0; i < n && identity; ++i) identity = perm_[i] == i;
+  if (!identity) {
+    p_.for_each_real([&](std::vector<Real> &c) { gather(c, perm_, scratch_real_); });
+    p_.for_each_index([&](std::vector<std::uint32_t> &c) { gather(c, perm_, scratch_index_); });
+    for_each_wall_slot([&](WallSlot &s) {
+      if (s.history) gather(s.hist, perm_, scratch_real_, s.history);
+    });
+  }
+  list_.build(p_, grid, cell_start_, cell_sorted_, domain_, Real(skin_), pair_law_.ops->history);
+#pragma omp parallel for schedule(static)
+  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    p_.list_index[i] = static_cast<std::uint32_t>(i);
+    p_.x0[i] = p_.x[i]; p_.y0[i] = p_.y[i]; p_.z0[i] = p_.z[i];
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// forces
+
+template <class Real> Particles<Real> Simulation<Real>::view() {
+  Particles<Real> v;
+  v.n = static_cast<std::uint32_t>(p_.size());
+  v.x = p_.x.data(); v.y = p_.y.data(); v.z = p_.z.data();
+  v.vx = p_.vx.data(); v.vy = p_.vy.data(); v.vz = p_.vz.data();
+  v.wx = p_.wx.data(); v.wy = p_.wy.data(); v.wz = p_.wz.data();
+  v.r = p_.r.data(); v.m = p_.m.data();
+  v.fx = p_.fx.data(); v.fy = p_.fy.data(); v.fz = p_.fz.data();
+  v.tx = p_.tx.data(); v.ty = p_.ty.data(); v.tz = p_.tz.data();
+  for (int a = 0; a < 3; ++a) {
+    v.box_lo[a] = Real(domain_.lo[a]);
+    v.box_hi[a] = Real(domain_.hi[a]);
+    v.periodic[a] = domain_.periodic[a] ? 1 : 0;
+  }
+  v.dt = Real(dt_);
+  v.t = Real(time_);
+  return v;
+}
+
+template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane, std::uint32_t &touching) {
+  const Real px = Real(plane.wall.point[0]), py = Real(plane.wall.point[1]), pz = Real(plane.wall.point[2]);
+  const Real nx = Real(plane.wall.normal[0]), ny = Real(plane.wall.normal[1]), nz = Real(plane.wall.normal[2]);
+  const Real vx = Real(plane.wall.velocity[0]), vy = Real(plane.wall.velocity[1]), vz = Real(plane.wall.velocity[2]);
+  WallSlot &s = plane.slot;
+  std::uint32_t count = 0;
+  const long long n = static_cast<long long>(p_.size());
+#pragma omp parallel for schedule(static) reduction(+ : count)
+  for (long long ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const Real overlap = p_.r[i] - ((p_.x[i] - px) * nx + (p_.y[i] - py) * ny + (p_.z[i] - pz) * nz);
+    if (overlap > 0) {
+      s.overlap[i] = overlap;
+      s.nx[i] = nx; s.ny[i] = ny; s.nz[i] = nz;
+      s.vx[i] = vx; s.vy[i] = vy; s.vz[i] = vz;
+      ++count;
+    } else {
+      s.overlap[i] = 0;
+    }
+  }
+  touching = count;
+}
+
+template <class Real> void Simulation<Real>::compute_forces() {
+  const std::size_t n = p_.size();
+#pragma omp parallel for schedule(static)
+  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    p_.fx[i] = 0; p_.fy[i] = 0; p_.fz[i] = 0;
+    p_.tx[i] = 0; p_.ty[i] = 0; p_.tz[i] = 0;
+  }
+  forces_valid_ = true;
+  if (n == 0) return;
+  const Particles<Real> v = view();
+  const PairList<Real> l = list_.view();
+  if constexpr (std::is_same_v<Real, double>) pair_law_.ops->pairs_f64(pair_law_.self, &v, &l);
+  else pair_law_.ops->pairs_f32(pair_law_.self, &v, &l);
+
+  auto wall_forces = [&](const ContactLaw &law, WallSlot &s) {
+    const WallContacts<Real> w = s.view(n);
+    if constexpr (std::is_same_v<Real, double>) law.ops->walls_f64(law.self, &v, &w);
+    else law.ops->walls_f32(law.self, &v, &w);
+  };
+  for (auto &pl : planes_) {
+    if (!pl.wall.active) continue;
+    std::uint32_t touching = 0;
+    plane_contacts(pl, touching);
+    // A wall nobody touches now or touched last time has only zero history: skip the law call.
+    if (touching > 0 || pl.slot.touched) wall_forces(pl.wall.law, pl.slot);
+    pl.slot.touched = touching > 0;
+  }
+  for (auto &ge : geometries_) {
+    WallContacts<Real> w = ge.slot.view(n);
+    if constexpr (std::is_same_v<Real, double>) ge.geometry.ops->contacts_f64(ge.geometry.self, &v, &w);
+    else ge.geometry.ops->contacts_f32(ge.geometry.self, &v, &w);
+    wall_forces(ge.geometry.law, ge.slot);
+    ge.slot.touched = true;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// integration
+
+template <class Real> void Simulation<Real>::kick_rotation(Real half_dt) {
+  if (!rotate_) return;
+  const long long n = static_cast<long long>(p_.size());
+  Real *wx = p_.wx.data(), *wy = p_.wy.data(), *wz = p_.wz.data();
+  const Real *tx = p_.tx.data(), *ty = p_.ty.data(), *tz = p_.tz.data(), *ii = p_.inv_i.data();
+#pragma omp parallel for schedule(static)
+  for (long long i = 0; i < n; ++i) {
+    wx[i] += half_dt * tx[i] * ii[i];
+    wy[i] += half_dt * ty[i] * ii[i];
+    wz[i] += half_dt * tz[i] * ii[i];
+  }
+}
+
+// First half kick and drift in one pass over memory: v += dt/2 a; x += dt v; wrap periodic axes;
+// count particles outside open axes and non-finite ones; largest displacement since the list build.
+template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real dt) {
+  kick_rotation(half_dt);
+  const long long n = static_cast<long long>(p_.size());
+  Real *pos[3] = {p_.x.data(), p_.y.data(), p_.z.data()};
+  Real *vel[3] = {p_.vx.data(), p_.vy.data(), p_.vz.data()};
+  const Real *force[3] = {p_.fx.data(), p_.fy.data(), p_.fz.data()};
+  const Real *ref[3] = {p_.x0.data(), p_.y0.data(), p_.z0.data()};
+  const Real *inv_m = p_.inv_m.data();
+  const Real g[3] = {Real(settings_.gravity[0]), Real(settings_.gravity[1]), Real(settings_.gravity[2])};
+  const Real lo[3] = {Real(domain_.lo[0]), Real(domain_.lo[1]), Real(domain_.lo[2])};
+  const Real hi[3] = {Real(domain_.hi[0]), Real(domain_.hi[1]), Real(domain_.hi[2])};
+  const Real len[3] = {Real(domain_.length(0)), Real(domain_.length(1)), Real(domain_.length(2))};
+  const bool per[3] = {domain_.periodic[0], domain_.periodic[1], domain_.periodic[2]};
+  Real max_d2 = 0;
+  std::uint32_t escaped = 0, nonfinite = 0;
+#pragma omp parallel for schedule(static) reduction(max : max_d2) reduction(+ : escaped, nonfinite)
+  for (long long i = 0; i < n; ++i) {
+    Real d2 = 0;
+    bool out = false, finite = true;
+    for (int a = 0; a < 3; ++a) {
+      const Real v = vel[a][i] + half_dt * (force[a][i] * inv_m[i] + g[a]);
+      vel[a][i] = v;
+      Real x = pos[a][i] + dt * v;
+      finite = finite && std::isfinite(x);
+      if (per[a]) {
+        if (x >= hi[a]) x -= len[a];
+        else if (x < lo[a]) x += len[a];
+      } else {
+        out = out || !(x >= lo[a] && x < hi[a]);
+      }
+      pos[a][i] = x;
+      const Real d = wrap(x - ref[a][i], len[a], per[a]);
+      d2 += d * d;
+    }
+    max_d2 = std::max(max_d2, d2);
+    nonfinite += finite ? 0u : 1u;
+    escaped += (out && finite) ? 1u : 0u;
+  }
+  if (nonfinite > 0) {
+    time_ += dt_;  // report the step being taken
+    ++step_;
+    report_bad_particle();
+  }
+  if (escaped > 0) remove_escaped();
+  const Real half_skin = Real(0.5 * skin_);
+  return escaped > 0 || !(max_d2 <= half_skin * half_skin);
+}
+
+template <class Real> void Simulation<Real>::remove_escaped() {
+  const std::size_t n = p_.size();
+  perm_.clear();
+  for (std::size_t i = 0; i < n; ++i) {
+    bool inside = true;
+    const Real pos[3] = {p_.x[i], p_.y[i], p_.z[i]};
+    for (int a = 0; a < 3; ++a)
+      if (!domain_.periodic[a]) inside = inside && pos[a] >= Real(domain_.lo[a]) && pos[a] < Real(domain_.hi[a]);
+    if (inside) perm_.push_back(static_cast<std::uint32_t>(i));
+  }
+  const std::size_t removed = n - perm_.size();
+  if (removed == 0) return;
+  p_.for_each_real([&](std::vector<Real> &c) { gather(c, perm_, scratch_real_); });
+  p_.for_each_index([&](std::vector<std::uint32_t> &c) { gather(c, perm_, scratch_index_); });
+  for_each_wall_slot([&](WallSlot &s) {
+    if (s.history) gather(s.hist, perm_, scratch_real_, s.history);
+  });
+  resize_walls();
+  counters_.removed += removed;
+  list_valid_ = false;
+}
+
+// Second half kick fused with the per-step sanity check (NaN, speed limit).
+template <class Real> void Simulation<Real>::kick_and_check(Real half_dt) {
+  kick_rotation(half_dt);
+  const long long n = static_cast<long long>(p_.size());
+  Real *vx = p_.vx.data(), *vy = p_.vy.data(), *vz = p_.vz.data();
+  const Real *fx = p_.fx.data(), *fy = p_.fy.data(), *fz = p_.fz.data(), *im = p_.inv_m.data();
+  const Real *wx = p_.wx.data(), *wy = p_.wy.data(), *wz = p_.wz.data();
+  const Real gx = Real(settings_.gravity[0]), gy = Real(settings_.gravity[1]), gz = Real(settings_.gravity[2]);
+  const Real limit2 = Real(speed_limit_ * speed_limit_);
+  std::uint32_t bad = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bad)
+  for (long long i = 0; i < n; ++i) {
+    const Real ux = vx[i] + half_dt * (fx[i] * im[i] + gx);
+    const Real uy = vy[i] + half_dt * (fy[i] * im[i] + gy);
+    const Real uz = vz[i] + half_dt * (fz[i] * im[i] + gz);
+    vx[i] = ux; vy[i] = uy; vz[i] = uz;
+    const Real v2 = ux * ux + uy * uy + uz * uz;
+    const Real w2 = wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i];
+    bad += (!(v2 <= limit2) || !std::isfinite(w2)) ? 1u : 0u;  // NaN fails the comparison
+  }
+  if (bad > 0) report_bad_particle();
+}
+
+template <class Real> void Simulation<Real>::report_bad_particle() const {
+  const std::size_t n = p_.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const double v = std::sqrt(double(p_.vx[i]) * p_.vx[i] + double(p_.vy[i]) * p_.vy[i] + double(p_.vz[i]) * p_.vz[i]);
+    const bool finite = std::isfinite(v) && std::isfinite(double(p_.x[i]) + p_.y[i] + p_.z[i]) &&
+                        std::isfinite(double(p_.wx[i]) + p_.wy[i] + p_.wz[i]);
+    if (!finite)
+      throw RunError(fmt::format("the state became NaN or infinite at t = {:.6g} s (step {}): particle id {} at "
+                                 "({:.4g}, {:.4g}, {:.4g}) m; the integration is unstable: use a smaller dt (or "
+                                 "dt_safety), or check the contact parameters for a law that returns NaN",
+                                 time_, step_, p_.id[i], double(p_.x[i]), double(p_.y[i]), double(p_.z[i])));
+    if (!(v <= speed_limit_))
+      throw RunError(fmt::format("kinetic energy explodes at t = {:.6g} s (step {}): particle id {} moves at {:.4g} m/s, "
+                                 "above the limit {:.4g} m/s (10 x the fastest physical speed of the scene); the "
+                                 "integration is unstable or contacts overlap too deeply: use a smaller dt (or "
+                                 "dt_safety) or stiffer contacts, or raise settings.speed_limit if this speed is real",
+                                 time_, step_, p_.id[i], v, speed_limit_));
+  }
+  throw RunError(fmt::format("the state became invalid at t = {:.6g} s (step {}); use a smaller dt", time_, step_));
+}
+
+template <class Real> void Simulation<Real>::check_overlaps() {
+  const long long n = static_cast<long long>(p_.size());
+  const Real len[3] = {Real(domain_.length(0)), Real(domain_.length(1)), Real(domain_.length(2))};
+  const bool per[3] = {domain_.periodic[0], domain_.periodic[1], domain_.periodic[2]};
+  const Real limit = Real(settings_.overlap_limit);
+  std::uint32_t bad = 0;
+#pragma omp parallel for schedule(static) reduction(+ : bad)
+  for (long long ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    for (std::uint32_t k = list_.start[i]; k < list_.start[i + 1]; ++k) {
+      const std::uint32_t j = list_.nbr[k];
+      const Real dx = wrap(p_.x[i] - p_.x[j], len[0], per[0]), dy = wrap(p_.y[i] - p_.y[j], len[1], per[1]),
+                 dz = wrap(p_.z[i] - p_.z[j], len[2], per[2]);
+      const Real reach = p_.r[i] + p_.r[j];
+      const Real allowed = reach - 2 * limit * std::min(p_.r[i], p_.r[j]);  // centre distance at the limit
+      if (dx * dx + dy * dy + dz * dz < allowed * allowed) ++bad;
+    }
+  }
+  auto advice = "the contacts are too soft for the speeds or loads of this scene, or dt is too large: stiffen the "
+                "contact law (e.g. a larger v_max or smaller overlap_max for hooke laws), lower the speeds, or use a "
+                "smaller dt; settings.overlap_limit sets the limit";
+  if (bad > 0) {
+    for (std::size_t i = 0; i < p_.size(); ++i)
+      for (std::uint32_t k = list_.start[i]; k < list_.start[i + 1]; ++k) {
+        const std::uint32_t j = list_.nbr[k];
+        const double dx = wrap(double(p_.x[i]) - p_.x[j], domain_.length(0), per[0]),
+                     dy = wrap(double(p_.y[i]) - p_.y[j], domain_.length(1), per[1]),
+                     dz = wrap(double(p_.z[i]) - p_.z[j], domain_.length(2), per[2]);
+        const double overlap = double(p_.r[i]) + p_.r[j] - std::sqrt(dx * dx + dy * dy + dz * dz);
+        const double d = 2.0 * std::min(p_.r[i], p_.r[j]);
+        if (overlap > settings_.overlap_limit * d)
+          throw RunError(fmt::format("overlap too large at t = {:.6g} s (step {}): particles id {} and id {} overlap by "
+                                     "{:.4g} m = {:.3g} % of the diameter (limit {:.3g} %); {}",
+                                     time_, step_, p_.id[i], p_.id[j], overlap, 100 * overlap / d,
+                                     100 * settings_.overlap_limit, advice));
+      }
+  }
+  auto wall_check = [&](const WallSlot &s, const std::string &name) {
+    for (std::size_t i = 0; i < p_.size(); ++i) {
+      const double d = 2.0 * p_.r[i];
+      if (s.overlap[i] > settings_.overlap_limit * d)
+        throw RunError(fmt::format("overlap too large at t = {:.6g} s (step {}): particle id {} overlaps {} by {:.4g} m "
+                                   "= {:.3g} % of its diameter (limit {:.3g} %); {}",
+                                   time_, step_, p_.id[i], name, double(s.overlap[i]), 100 * s.overlap[i] / d,
+                                   100 * settings_.overlap_limit, advice));
+    }
+  };
+  for (const auto &pl : planes_)
+    if (pl.wall.active) wall_check(pl.slot, "plane wall '" + pl.wall.name + "'");
+  for (const auto &ge : geometries_) wall_check(ge.slot, "geometry '" + ge.geometry.name + "'");
+}
+
+template <class Real> void Simulation<Real>::prepare() {
+  if (!step_resolved_) resolve_step();
+  if (!list_valid_) rebuild_list();
+  if (!forces_valid_) compute_forces();
+}
+
+template <class Real> void Simulation<Real>::step() {
+  const auto t0 = std::chrono::steady_clock::now();
+  const SerialScope serial(p_.size() < settings_.parallel_min_particles);
+  prepare();
+  const Real dt = Real(dt_), half = Real(0.5 * dt_);
+  const bool rebuild = kick_and_drift(half, dt);
+  for (auto &pl : planes_)
+    for (int a = 0; a < 3; ++a) pl.wall.point[a] += dt_ * pl.wall.velocity[a];
+  time_ += dt_;
+  ++step_;
+  if (rebuild || !list_valid_) rebuild_list();
+  compute_forces();
+  kick_and_check(half);
+  if (step_ % settings_.check_every == 0) check_overlaps();
+  ++counters_.steps;
+  counters_.particle_steps += double(p_.size());
+  counters_.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+template <class Real> void Simulation<Real>::run_steps(std::uint64_t n) {
+  for (std::uint64_t k = 0; k < n; ++k) step();
+}
+
+template <class Real>
+bool Simulation<Real>::run_until(double t_end, const StepCallback &callback, std::uint64_t every) {
+  if (every == 0) every = 1;
+  while (time_ + 0.5 * dt() < t_end) {
+    step();
+    if (callback && step_ % every == 0 && !callback(*this)) return false;
+  }
+  return true;
+}
+
+template class Simulation<double>;
+template class Simulation<float>;
+
+}  // namespace spreadmap::engine

@@ -1,0 +1,154 @@
+// Simulation<Real>: the DEM engine for spheres (Real = double by default; float is available and
+// measured). Velocity-Verlet translation and rotation, gravity, periodic or open axes, plane walls
+// and geometry plugins, Verlet neighbour lists over cell-sorted particles, contact history,
+// automatic time step from the contact laws, run-time sanity checks, bitwise checkpoints.
+//
+// One step (the LAMMPS/LIGGGHTS order): half kick with the last forces, drift, remove particles that
+// left through an open face, rebuild the neighbour list if needed, evaluate forces with the
+// half-step velocities, half kick. Everything is deterministic: results are bitwise identical run
+// to run, for any number of OpenMP threads, and across a checkpoint/resume.
+//
+// Thread safety: one Simulation is driven by one thread (it uses OpenMP inside); distinct
+// Simulations may run concurrently if the plugins' bound instances allow it.
+#pragma once
+#include <engine/counters.hpp>
+#include <engine/domain.hpp>
+#include <engine/neighbour_list.hpp>
+#include <engine/particle_arrays.hpp>
+#include <engine/particle_set.hpp>
+#include <engine/settings.hpp>
+#include <engine/walls.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace spreadmap::engine {
+
+template <class Real = double> class Simulation {
+ public:
+  // Called by run_until every `every` steps; return false to stop (SIGINT, time budget...).
+  using StepCallback = std::function<bool(const Simulation &)>;
+
+  // pair_law: the particle-particle law; its ops and bound instance must outlive the Simulation.
+  Simulation(const Domain &domain, ContactLaw pair_law, Settings settings = {});
+
+  // --- particles -----------------------------------------------------------------------------
+  // Adds particles (validated; empty optional columns filled: zero velocities, masses from density
+  // when `mass` is empty, fresh ids when `id` is empty). Periodic coordinates are wrapped; a centre
+  // outside an open axis is an error. The time step is chosen again before the next step.
+  void add_particles(ParticleSet set, double density = 0);
+  std::size_t size() const { return p_.size(); }
+  // The current state in the engine's current (cell-sorted) order, in double.
+  ParticleSet state() const;
+  const ParticleArrays<Real> &arrays() const { return p_; }
+
+  // --- walls ---------------------------------------------------------------------------------
+  std::size_t add_plane_wall(PlaneWall wall);       // returns its index; before load_checkpoint
+  std::size_t add_geometry(GeometryWall geometry);  // returns its index; before load_checkpoint
+  std::size_t plane_wall_count() const { return planes_.size(); }
+  std::size_t geometry_count() const { return geometries_.size(); }
+  const PlaneWall &plane_wall(std::size_t i) const { return planes_.at(i).wall; }
+  void set_plane_wall_active(std::size_t i, bool active);  // deactivating clears its history
+  void set_plane_wall_velocity(std::size_t i, const std::array<double, 3> &velocity);
+
+  // --- time ----------------------------------------------------------------------------------
+  // Smallest stable step over the contact types present: the pair law for the lightest and
+  // heaviest particle combinations (when there are >= 2 particles), every wall and geometry law
+  // against the lightest and heaviest particle (m_eq = m). See stability.hpp. +inf when none.
+  double critical_dt() const;
+  // The step in use (resolves the automatic step, or checks the requested one, if not done yet).
+  double dt();
+  double time() const { return time_; }
+  std::uint64_t step_count() const { return step_; }
+
+  void step();
+  void run_steps(std::uint64_t n);
+  // Steps until time() reaches t_end (within half a step); calls `callback` after every step whose
+  // number is a multiple of `every`. Returns false if the callback asked to stop.
+  bool run_until(double t_end, const StepCallback &callback = {}, std::uint64_t every = 1);
+
+  // --- figures -------------------------------------------------------------------------------
+  std::uint64_t removed_count() const { return counters_.removed; }
+  const RunCounters &counters() const { return counters_; }
+  bool rotation_integrated() const { return rotate_; }
+  std::size_t list_entries() const { return list_.entries(); }
+  double skin() const { return skin_; }
+  const Domain &domain() const { return domain_; }
+  const Settings &settings() const { return settings_; }
+
+  // --- checkpoints ---------------------------------------------------------------------------
+  // Everything a bitwise-identical continuation needs, written atomically (path.tmp + rename).
+  // Call between steps. Before load, add the same plane walls and geometries (and particles are
+  // replaced by the checkpoint's); mismatched counts, precision or history sizes are SetupErrors.
+  void save_checkpoint(const std::filesystem::path &path) const;
+  void load_checkpoint(const std::filesystem::path &path);
+
+ private:
+  struct WallSlot {
+    std::vector<Real> overlap, nx, ny, nz, vx, vy, vz, hist;
+    unsigned history = 0;
+    bool touched = false;  // some particle touched at the last evaluation
+    WallContacts<Real> view(std::size_t n) {
+      return {static_cast<std::uint32_t>(n), overlap.data(), nx.data(), ny.data(), nz.data(),
+              vx.data(), vy.data(), vz.data(), hist.data()};
+    }
+    void resize(std::size_t n);
+  };
+  struct PlaneSlot {
+    PlaneWall wall;
+    WallSlot slot;
+  };
+  struct GeometrySlot {
+    GeometryWall geometry;
+    WallSlot slot;
+  };
+
+  void prepare();
+  void resolve_step();
+  void rebuild_list();
+  void compute_forces();
+  void plane_contacts(PlaneSlot &plane, std::uint32_t &touching);
+  void remove_escaped();
+  void kick_rotation(Real half_dt);
+  bool kick_and_drift(Real half_dt, Real dt);  // returns true when the list must be rebuilt
+  void kick_and_check(Real half_dt);
+  void check_overlaps();
+  [[noreturn]] void report_bad_particle() const;  // throws RunError for the first NaN or too fast particle
+  Particles<Real> view();
+  void log(const std::string &message) const;
+  void resize_walls();
+  template <class F> void for_each_wall_slot(F &&f);
+
+  Domain domain_;
+  ContactLaw pair_law_;
+  Settings settings_;
+
+  ParticleArrays<Real> p_;
+  NeighbourList<Real> list_;
+  std::vector<PlaneSlot> planes_;
+  std::vector<GeometrySlot> geometries_;
+
+  double time_ = 0;
+  std::uint64_t step_ = 0;
+  double dt_ = 0;
+  double skin_ = 0;
+  double speed_limit_ = 0;
+  bool rotate_ = false;
+  bool step_resolved_ = false;  // dt, skin, rotation and limits chosen for the current scene
+  bool list_valid_ = false;
+  bool forces_valid_ = false;
+  std::uint32_t next_id_ = 0;
+  RunCounters counters_;
+
+  // Scratch (kept to avoid allocation in rebuilds).
+  std::vector<std::uint32_t> perm_, cell_, cell_sorted_, cell_start_, scratch_index_;
+  std::vector<Real> scratch_real_;
+};
+
+extern template class Simulation<double>;
+extern template class Simulation<float>;
+
+}  // namespace spreadmap::engine

@@ -1,0 +1,39 @@
+// What the engine calls for contacts: bound contact-law instances and walls. A law is a plugin's
+// ops table plus one bound instance (`self`); the same plugin bound twice (particle-particle,
+// particle-substrate, particle-spreader) is how per-pair materials work. The engine never owns
+// `self`: the caller keeps the plugin instances alive for the life of the Simulation.
+#pragma once
+#include <spreadmap/contact.hpp>
+#include <spreadmap/geometry.hpp>
+
+#include <array>
+#include <string>
+
+namespace spreadmap::engine {
+
+struct ContactLaw {
+  const sm_contact_ops_v1 *ops = nullptr;
+  const void *self = nullptr;
+};
+
+// An infinite plane. Particles on the side `normal` points to touch it when closer than their
+// radius. The point moves with `velocity` (a tangential velocity is a conveyor: the plane stays put
+// but drags particles through friction). Inactive walls exert nothing and keep no history.
+struct PlaneWall {
+  std::array<double, 3> point{0, 0, 0};     // [m]
+  std::array<double, 3> normal{0, 0, 1};    // unit (normalised on add), into the particle side
+  std::array<double, 3> velocity{0, 0, 0};  // [m/s]
+  ContactLaw law;
+  bool active = true;
+  std::string name = "plane";               // for messages
+};
+
+// A geometry plugin (spreader, substrate shape) producing wall contacts each step.
+struct GeometryWall {
+  const sm_geometry_ops_v1 *ops = nullptr;
+  const void *self = nullptr;
+  ContactLaw law;
+  std::string name = "geometry";            // for messages, e.g. "spreader/roller"
+};
+
+}  // namespace spreadmap::engine

@@ -1,0 +1,46 @@
+// Structure-of-arrays views the engine hands to plugin loops, one call per step per batch.
+// Plain standard-layout structs (safe across the C boundary); pointers are host memory on the CPU
+// backend and device memory on the CUDA backend. The engine owns every array.
+#pragma once
+#include <cstdint>
+
+namespace spreadmap {
+
+// Particle state. Read-only for plugins except the force/torque accumulators.
+template <class Real> struct Particles {
+  std::uint32_t n;
+  const Real *x, *y, *z;     // position [m]
+  const Real *vx, *vy, *vz;  // velocity [m/s]
+  const Real *wx, *wy, *wz;  // angular velocity [rad/s]
+  const Real *r;             // radius [m]
+  const Real *m;             // mass [kg]
+  Real *fx, *fy, *fz;        // force accumulators [N]   (a plugin adds; never overwrites)
+  Real *tx, *ty, *tz;        // torque accumulators [N m]
+  Real box_lo[3], box_hi[3]; // domain
+  std::uint8_t periodic[3];  // 1: periodic along that axis (minimum image)
+  Real dt;                   // time step [s]
+  Real t;                    // time at which forces are evaluated [s]
+};
+
+// Full (both-direction) neighbour list in CSR form: the neighbours of particle i are
+// nbr[start[i] .. start[i+1]). Each particle sums its own forces in this fixed order, so results do
+// not depend on the number of threads. hist holds `history` values per list entry; the engine
+// carries them across list rebuilds.
+template <class Real> struct PairList {
+  const std::uint32_t *start;
+  const std::uint32_t *nbr;
+  Real *hist;
+};
+
+// One wall contact per particle and wall, stored densely by particle index: particle i touches the
+// wall when overlap[i] > 0. normal points from the wall into the particle; (vx, vy, vz) is the wall's
+// surface velocity at the contact point. hist holds `history` values per particle for this wall.
+template <class Real> struct WallContacts {
+  std::uint32_t n;
+  Real *overlap;
+  Real *nx, *ny, *nz;
+  Real *vx, *vy, *vz;
+  Real *hist;
+};
+
+}  // namespace spreadmap

@@ -1,0 +1,159 @@
+// Contact laws: a trivially copyable functor of host-device code, instantiated by the SDK's loops
+// inside the plugin. No virtual call per contact: the engine calls the plugin once per step per batch.
+//
+// A law provides:
+//   static constexpr sm_param_v1 params[];        schema
+//   static constexpr int history;                 values of history per contact (0 = none)
+//   static Law bind(const sm::Values &);          host side: derive constants, may throw ParamError
+//   double natural_frequency(double m_eq, double r_eff) const;  largest sqrt(K/m_eq) [rad/s]
+//   double damping_ratio(double m_eq, double r_eff) const;      zeta of its dashpot at that stiffness
+//   bool makes_torque() const;                    whether any tangential force or rolling torque exists
+//   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real>&, Real *hist) const;
+#pragma once
+#include <spreadmap/batch.hpp>
+#include <spreadmap/hd.hpp>
+#include <spreadmap/plugin.hpp>
+
+#include <type_traits>
+
+namespace spreadmap {
+
+// Kinematics of one contact, seen from particle i (the one receiving the force).
+template <class Real> struct ContactState {
+  Vec3<Real> normal;   // unit, from the other body towards i
+  Real overlap;        // > 0 [m]
+  Real v_n;            // (v_i - v_other) . normal at the contact point [m/s]; < 0 approaching
+  Vec3<Real> v_t;      // tangential relative velocity of i at the contact point [m/s]
+  Vec3<Real> w_rel;    // w_i - w_other [rad/s] (rolling resistance)
+  Real m_eq;           // m_i m_j / (m_i + m_j); the particle mass against a wall [kg]
+  Real r_eff;          // r_i r_j / (r_i + r_j); the particle radius against a wall [m]
+  Real dt;             // time step [s]
+};
+
+// Force on particle i. Its torque is arm x tangent with arm = -r_i normal, plus `torque`.
+template <class Real> struct ContactForce {
+  Real normal = 0;                   // along state.normal, > 0 repulsive [N]
+  Vec3<Real> tangent = {0, 0, 0};    // [N]
+  Vec3<Real> torque = {0, 0, 0};     // extra torque on i, e.g. rolling resistance [N m]
+};
+
+// The contact ops table, shared by every contact plugin.
+typedef struct sm_contact_ops_v1 {
+  uint32_t history;
+  double (*natural_frequency)(const void *self, double m_eq, double r_eff);
+  double (*damping_ratio)(const void *self, double m_eq, double r_eff);
+  int (*makes_torque)(const void *self);
+  void (*pairs_f64)(const void *self, const Particles<double> *p, const PairList<double> *list);
+  void (*pairs_f32)(const void *self, const Particles<float> *p, const PairList<float> *list);
+  void (*walls_f64)(const void *self, const Particles<double> *p, const WallContacts<double> *w);
+  void (*walls_f32)(const void *self, const Particles<float> *p, const WallContacts<float> *w);
+} sm_contact_ops_v1;
+
+// Minimum-image separation along one axis.
+template <class Real> SM_HD Real wrap(Real d, Real length, bool periodic) {
+  if (periodic) {
+    if (d > Real(0.5) * length) d -= length;
+    else if (d < Real(-0.5) * length) d += length;
+  }
+  return d;
+}
+
+// Adds the force and torque of one contact to particle i's running sums.
+template <class Real>
+SM_HD void accumulate(const ContactForce<Real> &f, const Vec3<Real> &normal, Real r_i, Vec3<Real> &force,
+                      Vec3<Real> &torque) {
+  force += normal * f.normal + f.tangent;
+  torque += cross(normal * (-r_i), f.tangent) + f.torque;
+}
+
+// Particle-particle loop: each particle sums its own forces over its neighbours in list order.
+template <class Law, class Real>
+void pair_loop(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
+  const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
+#pragma omp parallel for schedule(static)
+  for (long long ii = 0; ii < static_cast<long long>(p.n); ++ii) {
+    const auto i = static_cast<std::uint32_t>(ii);
+    Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
+    const Vec3<Real> vi{p.vx[i], p.vy[i], p.vz[i]}, wi{p.wx[i], p.wy[i], p.wz[i]};
+    for (std::uint32_t k = list.start[i]; k < list.start[i + 1]; ++k) {
+      const std::uint32_t j = list.nbr[k];
+      Vec3<Real> d{wrap(p.x[i] - p.x[j], lx, p.periodic[0]), wrap(p.y[i] - p.y[j], ly, p.periodic[1]),
+                   wrap(p.z[i] - p.z[j], lz, p.periodic[2])};
+      const Real dist2 = dot(d, d), reach = p.r[i] + p.r[j];
+      Real *h = Law::history ? list.hist + std::size_t(k) * Law::history : nullptr;
+      if (dist2 >= reach * reach) {
+        for (int q = 0; q < Law::history; ++q) h[q] = 0;  // apart: forget
+        continue;
+      }
+      const Real dist = std::sqrt(dist2);
+      ContactState<Real> c;
+      c.normal = d * (Real(1) / dist);
+      c.overlap = reach - dist;
+      const Vec3<Real> vj{p.vx[j], p.vy[j], p.vz[j]}, wj{p.wx[j], p.wy[j], p.wz[j]};
+      // velocity of i's surface relative to j's at the contact point
+      const Vec3<Real> v = vi - vj - cross(wi * p.r[i] + wj * p.r[j], c.normal);
+      c.v_n = dot(v, c.normal);
+      c.v_t = v - c.normal * c.v_n;
+      c.w_rel = wi - wj;
+      c.m_eq = p.m[i] * p.m[j] / (p.m[i] + p.m[j]);
+      c.r_eff = p.r[i] * p.r[j] / (p.r[i] + p.r[j]);
+      c.dt = p.dt;
+      accumulate(law(c, h), c.normal, p.r[i], force, torque);
+    }
+    p.fx[i] += force.x; p.fy[i] += force.y; p.fz[i] += force.z;
+    p.tx[i] += torque.x; p.ty[i] += torque.y; p.tz[i] += torque.z;
+  }
+}
+
+// Particle-wall loop over the dense per-particle records of one wall.
+template <class Law, class Real>
+void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w) {
+#pragma omp parallel for schedule(static)
+  for (long long ii = 0; ii < static_cast<long long>(w.n); ++ii) {
+    const auto i = static_cast<std::uint32_t>(ii);
+    Real *h = Law::history ? w.hist + std::size_t(i) * Law::history : nullptr;
+    if (!(w.overlap[i] > 0)) {
+      for (int q = 0; q < Law::history; ++q) h[q] = 0;
+      continue;
+    }
+    ContactState<Real> c;
+    c.normal = {w.nx[i], w.ny[i], w.nz[i]};
+    c.overlap = w.overlap[i];
+    const Vec3<Real> wi{p.wx[i], p.wy[i], p.wz[i]};
+    const Vec3<Real> v = Vec3<Real>{p.vx[i] - w.vx[i], p.vy[i] - w.vy[i], p.vz[i] - w.vz[i]} -
+                         cross(wi * p.r[i], c.normal);
+    c.v_n = dot(v, c.normal);
+    c.v_t = v - c.normal * c.v_n;
+    c.w_rel = wi;
+    c.m_eq = p.m[i];
+    c.r_eff = p.r[i];
+    c.dt = p.dt;
+    Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
+    accumulate(law(c, h), c.normal, p.r[i], force, torque);
+    p.fx[i] += force.x; p.fy[i] += force.y; p.fz[i] += force.z;
+    p.tx[i] += torque.x; p.ty[i] += torque.y; p.tz[i] += torque.z;
+  }
+}
+
+namespace detail {
+template <class Law> struct ContactOps {
+  static const Law &law(const void *s) { return *static_cast<const Law *>(s); }
+  static double frequency(const void *s, double m, double r) { return law(s).natural_frequency(m, r); }
+  static double zeta(const void *s, double m, double r) { return law(s).damping_ratio(m, r); }
+  static int torque(const void *s) { return law(s).makes_torque() ? 1 : 0; }
+  static void p64(const void *s, const Particles<double> *p, const PairList<double> *l) { pair_loop(law(s), *p, *l); }
+  static void p32(const void *s, const Particles<float> *p, const PairList<float> *l) { pair_loop(law(s), *p, *l); }
+  static void w64(const void *s, const Particles<double> *p, const WallContacts<double> *w) { wall_loop(law(s), *p, *w); }
+  static void w32(const void *s, const Particles<float> *p, const WallContacts<float> *w) { wall_loop(law(s), *p, *w); }
+  static constexpr sm_contact_ops_v1 table = {Law::history, &frequency, &zeta, &torque, &p64, &p32, &w64, &w32};
+};
+}  // namespace detail
+
+}  // namespace spreadmap
+
+// Registers a contact law. The static_asserts read as sentences when a law breaks the rules.
+#define SPREADMAP_CONTACT_PLUGIN(LAW, NAME, VERSION, SUMMARY)                                        \
+  static_assert(std::is_trivially_copyable_v<LAW>,                                                  \
+                "a contact law must be trivially copyable: no virtuals, no std containers");         \
+  static_assert(LAW::history >= 0, "a contact law must declare `static constexpr int history`");    \
+  SPREADMAP_PLUGIN("contact", LAW, NAME, VERSION, SUMMARY, &::spreadmap::detail::ContactOps<LAW>::table)

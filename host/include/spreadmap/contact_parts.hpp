@@ -1,0 +1,202 @@
+// Shared pieces of contact laws, composed by the plugins in plugins/contact/ (never copied):
+//   - restitution -> damping ratio of a linear spring-dashpot, with the eps = 0 and eps = 1 limits,
+//     and the restitution a clamped (F_n >= 0) dashpot actually gives;
+//   - LinearNormal: the study's normal force K_n = m_eq (V_max/Delta_max)^2, beta_n from eps,
+//     optionally clamped and optionally corrected so that the clamped contact still returns eps;
+//   - Coulomb slider variants (stick, viscous, coulomb) for laws without a tangential spring;
+//   - a Cundall-Strack tangential spring with Coulomb cap (history of 3 values);
+//   - rolling resistance (constant directional torque, Ai et al. 2011 model A).
+// SI units throughout. The SM_HD parts follow hd.hpp's rules; bind helpers are host-only.
+#pragma once
+#include <spreadmap/contact.hpp>
+#include <spreadmap/hd.hpp>
+#include <spreadmap/params.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+namespace spreadmap {
+
+// ---------------------------------------------------------------- restitution and damping ratio
+
+// Damping ratio zeta of a linear spring-dashpot whose unclamped collision rebounds with restitution
+// eps: zeta = -ln eps / sqrt(pi^2 + ln^2 eps). Limits taken exactly: eps = 0 gives critical damping
+// (1, where the literal formula is inf/inf), eps = 1 gives exactly 0.
+SM_HD double damping_ratio_from_restitution(double eps) {
+  if (!(eps > 0)) return 1.0;
+  if (eps >= 1) return 0.0;
+  const double l = std::log(eps);
+  return -l / std::sqrt(pi * pi + l * l);
+}
+
+// Restitution of a linear spring-dashpot collision when the force is clamped to F_n >= 0: the bodies
+// separate when the force first vanishes (x'' = 0), which for damping ratio zeta < 1 happens at
+// omega_d t = pi - 2 asin(zeta) = 2 acos(zeta), giving e_c = exp(-2 zeta acos(zeta) / sqrt(1 - zeta^2)).
+// It tends to e^-2 at zeta = 1 and continues for zeta > 1 as exp(-2 zeta acosh(zeta) / sqrt(zeta^2 - 1)).
+SM_HD double clamped_restitution(double zeta) {
+  if (!(zeta > 0)) return 1.0;
+  if (zeta == 1.0) return std::exp(-2.0);
+  if (zeta < 1.0) return std::exp(-2.0 * zeta * std::acos(zeta) / std::sqrt(1.0 - zeta * zeta));
+  return std::exp(-2.0 * zeta * std::acosh(zeta) / std::sqrt(zeta * zeta - 1.0));
+}
+
+// A number for an error message (std::to_string would export libstdc++ template symbols from a plugin).
+inline std::string number_text(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", x);
+  return text;
+}
+
+// Largest damping ratio the clamp correction may ask for; its clamped restitution is 2.5e-5.
+inline constexpr double max_corrected_damping_ratio = 100.0;
+
+// Host only: the damping ratio whose clamped collision rebounds with restitution eps (inverse of
+// clamped_restitution, by bisection; e_c decreases monotonically in zeta). eps = 0 would need
+// infinite damping, so values below clamped_restitution(max_corrected_damping_ratio) are refused.
+inline double damping_ratio_for_clamped_restitution(double eps) {
+  if (eps >= 1) return 0.0;
+  if (eps < clamped_restitution(max_corrected_damping_ratio))
+    throw ParamError("restitution " + number_text(eps) +
+                     " cannot be reached with clamp_correction (it needs unbounded damping); use restitution >= " +
+                     number_text(clamped_restitution(max_corrected_damping_ratio)) + " or clamp_correction: false");
+  double lo = 0, hi = max_corrected_damping_ratio;
+  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (clamped_restitution(mid) > eps ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+// Effective mass of the tangential slip of two solid spheres (or a sphere and a wall) including
+// their rotation: an impulse J changes the slip by J (1 + 5/2) / m_eq, so m_t = (2/7) m_eq.
+template <class Real> SM_HD Real tangential_mass(Real m_eq) { return Real(2) / Real(7) * m_eq; }
+
+// ---------------------------------------------------------------- linear normal force (the study's)
+
+// Schema entries shared by the Hooke laws (listed in each law's params[]).
+inline constexpr sm_param_v1 param_v_max =
+    number("v_max", "m/s", 1e-4, 1e3, 0.5, "V_max: largest expected impact speed; with overlap_max sets K_n = m_eq V_max^2 / Delta_max^2");
+inline constexpr sm_param_v1 param_overlap_max =
+    number("overlap_max", "m", 1e-12, 1e-2, 2.5e-6, "Delta_max: overlap reached at an undamped impact at V_max (1 % of 250 um by default)");
+inline constexpr sm_param_v1 param_restitution =
+    number("restitution", "-", 0, 1, 0.8, "epsilon: normal coefficient of restitution of an isolated collision");
+inline constexpr sm_param_v1 param_friction =
+    number("friction", "-", 0, 10, 0.185, "mu: sliding (Coulomb) friction coefficient, |F_t| <= mu |F_n|");
+inline constexpr sm_param_v1 param_rolling_friction =
+    number("rolling_friction", "-", 0, 1, 0, "mu_r: rolling resistance, torque mu_r r_eff |F_n| against the relative rolling");
+inline constexpr sm_param_v1 param_clamp_normal =
+    boolean("clamp_normal", false, "clamp F_n >= 0 (no attraction at the end of a damped contact); raises the restitution unless clamp_correction");
+inline constexpr sm_param_v1 param_clamp_correction =
+    boolean("clamp_correction", false, "with clamp_normal: choose the damping so that the clamped contact still rebounds with restitution epsilon");
+
+// F_n = m_eq (omega0^2 delta - 2 zeta omega0 v_n): K_n = m_eq omega0^2 with omega0 = V_max/Delta_max,
+// beta_n = 2 zeta sqrt(K_n m_eq) = -2 ln eps sqrt(K_n m_eq / (pi^2 + ln^2 eps)). The dashpot opposes the
+// relative normal motion (v_n < 0 approaching makes it repulsive).
+struct LinearNormal {
+  double omega0;      // V_max / Delta_max [rad/s], the same for every contact whatever the sizes
+  double zeta;        // damping ratio actually used (corrected when clamp_correction)
+  bool clamp;         // F_n >= 0
+
+  static LinearNormal bind(const Values &v) {
+    const double eps = v["restitution"];
+    const bool clamp = v.boolean("clamp_normal"), correct = v.boolean("clamp_correction");
+    if (correct && !clamp) throw ParamError("clamp_correction: true needs clamp_normal: true");
+    const double zeta = correct ? damping_ratio_for_clamped_restitution(eps) : damping_ratio_from_restitution(eps);
+    return {v["v_max"] / v["overlap_max"], zeta, clamp};
+  }
+  // Normal force along the normal, > 0 repulsive [N].
+  template <class Real> SM_HD Real force(Real m_eq, Real overlap, Real v_n) const {
+    const Real w = Real(omega0);
+    const Real f = m_eq * w * (w * overlap - Real(2 * zeta) * v_n);
+    return clamp ? max(f, Real(0)) : f;
+  }
+};
+
+// ---------------------------------------------------------------- Coulomb slider (no spring)
+
+// What the slider does where the slip direction is undefined (vanishing slip).
+enum class Slider : int {
+  stick = 0,    // -min(mu|F_n|, m_t |v_t| / (2 dt)) e_t: below the cap it removes half the slip per step
+  viscous = 1,  // -min(mu|F_n|, m_eq gamma_t |v_t|) e_t: LIGGGHTS' regularised slider
+  coulomb = 2   // -mu|F_n| e_t when |v_t| > slip_speed_min, else 0 (chatters around zero slip)
+};
+
+inline Slider slider_from_name(const std::string &name) {
+  if (name == "stick") return Slider::stick;
+  if (name == "viscous") return Slider::viscous;
+  if (name == "coulomb") return Slider::coulomb;
+  throw ParamError("slider '" + name + "' is not one of stick, viscous, coulomb");
+}
+
+// Tangential force of a spring-less slider with Coulomb cap `cap` = mu |F_n| [N].
+// slip_rate: gamma_t [1/s] (viscous); slip_speed_min [m/s] (coulomb).
+template <class Real>
+SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real m_eq, Real dt, Real slip_rate,
+                              Real slip_speed_min) {
+  const Real speed = norm(v_t);
+  if (!(speed > 0) || !(cap > 0)) return {0, 0, 0};
+  Real magnitude = cap;
+  if (kind == Slider::stick) {
+    // Below the cap, the impulse F dt changes the slip by F dt / m_t = |v_t| / 2: never reverses it,
+    // and a round-off slip gets a round-off force (no spurious spin).
+    magnitude = min(cap, tangential_mass(m_eq) * speed / (Real(2) * dt));
+  } else if (kind == Slider::viscous) {
+    magnitude = min(cap, m_eq * slip_rate * speed);
+  } else if (speed <= slip_speed_min) {
+    return {0, 0, 0};
+  }
+  return v_t * (-magnitude / speed);
+}
+
+// ---------------------------------------------------------------- tangential spring (history 3)
+
+// Cundall-Strack tangential spring with Coulomb cap. hist[0..2] is the spring's elongation vector s
+// [m] in the global frame, rotated each step into the current tangent plane (length kept) before
+// v_t dt is added. F_t = -k_t s - damping v_t, capped at `cap`; when capped, s is reset to the
+// elongation consistent with the capped force (as LAMMPS gran/hooke/history does).
+template <class Real>
+SM_HD Vec3<Real> tangential_spring(const Vec3<Real> &normal, const Vec3<Real> &v_t, Real stiffness, Real damping, Real cap,
+                                   Real dt, Real *hist) {
+  Vec3<Real> s{hist[0], hist[1], hist[2]};
+  const Real before = norm(s);
+  s -= normal * dot(s, normal);
+  const Real after = norm(s);
+  if (after > 0) s *= before / after;
+  s += v_t * dt;
+  Vec3<Real> f = -(s * stiffness) - v_t * damping;
+  const Real magnitude = norm(f);
+  if (magnitude > cap) {
+    f *= cap / magnitude;
+    s = -(f + v_t * damping) * (Real(1) / stiffness);
+  }
+  hist[0] = s.x; hist[1] = s.y; hist[2] = s.z;
+  return f;
+}
+
+// ---------------------------------------------------------------- rolling resistance
+
+// Constant directional torque (Ai et al. 2011, model A): M_r = -mu_r r_eff |F_n| w_r/|w_r| with w_r the
+// relative angular velocity projected on the tangent plane (rolling; twisting is left free).
+// Where the rolling speed vanishes the direction is undefined; instead of a threshold the magnitude is
+// limited, as the stick slider is, to what removes at most half of w_r per step for the smallest
+// relative inertia of the pair, I_r = (2/5) m_eq r_eff^2 (exact against a wall, a lower bound for two
+// spheres): no chatter, and a sphere that stops rolling stays stopped.
+template <class Real>
+SM_HD Vec3<Real> rolling_torque(Real mu_r, Real r_eff, Real fn_abs, const Vec3<Real> &normal, const Vec3<Real> &w_rel,
+                                Real m_eq, Real dt) {
+  if (!(mu_r > 0)) return {0, 0, 0};
+  const Vec3<Real> w = w_rel - normal * dot(w_rel, normal);
+  const Real speed = norm(w);
+  if (!(speed > 0)) return {0, 0, 0};
+  const Real inertia = Real(0.4) * m_eq * r_eff * r_eff;
+  const Real magnitude = min(mu_r * r_eff * fn_abs, inertia * speed / (Real(2) * dt));
+  return w * (-magnitude / speed);
+}
+
+// Clears a contact's history (apart, or no history).
+template <class Real> SM_HD void clear_history(Real *hist, int n) {
+  for (int q = 0; q < n; ++q) hist[q] = 0;
+}
+
+}  // namespace spreadmap

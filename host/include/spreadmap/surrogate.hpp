@@ -1,0 +1,25 @@
+// Surrogate models: host-only classes behind the C descriptor. The host owns names, units, splits
+// and files; a plugin sees standard matrices (row-major) and keeps its own normalisation in its state.
+#pragma once
+#include <spreadmap/abi.h>
+#include <spreadmap/plugin.hpp>
+
+extern "C" {
+typedef struct sm_dataset_v1 {
+  uint32_t rows, n_in, n_out;
+  const double *x;  // rows x n_in
+  const double *y;  // rows x n_out
+} sm_dataset_v1;
+
+typedef struct sm_surrogate_ops_v1 {
+  int has_std;  // 1 when predict() fills a standard deviation
+  int (*fit)(void *self, const sm_dataset_v1 *train, sm_error *err);  // 0 on success
+  // mean: rows x n_out; std: rows x n_out or NULL. 0 on success.
+  int (*predict)(const void *self, uint32_t rows, const double *x, double *mean, double *std, sm_error *err);
+  // JSON text of the fitted state (weights or hyperparameters, normalisation); valid until the next call.
+  const char *(*save)(void *self);
+  int (*load)(void *self, const char *state_json, sm_error *err);  // 0 on success
+  // JSON text with facts about the last fit (final loss, epochs, hyperparameters).
+  const char *(*fit_info)(void *self);
+} sm_surrogate_ops_v1;
+}

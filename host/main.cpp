@@ -1,0 +1,207 @@
+// spreadmap: which spreader settings give the powder layer you want, as fast as possible.
+// The command line: run, validate, plugins and the stand-alone stage commands.
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <boost/program_options.hpp>
+#include <cstdio>
+#include <iostream>
+
+#include "core/error.hpp"
+#include "core/schema.hpp"
+#include "core/stop.hpp"
+#include "core/suggest.hpp"
+#include "workflow/commands.hpp"
+#include "workflow/stage.hpp"
+
+namespace po = boost::program_options;
+namespace sm = spreadmap;
+
+namespace {
+
+constexpr const char *usage = R"(usage: spreadmap <command> [options]
+
+commands:
+  run WORKFLOW        run a workflow (simulate -> characterise -> train -> map)
+  validate WORKFLOW   check a workflow completely without running anything
+  plugins [NAME]      list plugins and their parameters (the reference manual)
+  characterise STATE  layer metrics of a particle file (.vtp or .csv)
+  train TABLE         fit a surrogate to a CSV table
+  map MODEL           process map of a trained model
+  query MODEL         predictions or the best operating point of a trained model
+  render STATE        snapshot of a particle state as PNG
+
+  spreadmap <command> --help    options of a command
+  spreadmap --version
+)";
+
+struct Common {
+  bool quiet = false, verbose = false;
+  void add(po::options_description &d) {
+    d.add_options()("quiet,q", po::bool_switch(&quiet), "only warnings and errors")(
+        "verbose,v", po::bool_switch(&verbose), "debug messages");
+  }
+  void apply() const {
+    spdlog::set_level(quiet ? spdlog::level::warn : verbose ? spdlog::level::debug : spdlog::level::info);
+  }
+};
+
+// Parses argv[2..] for a sub-command; returns false when --help was printed.
+bool parse(int argc, char **argv, po::options_description &desc, po::positional_options_description &pos,
+           po::variables_map &vm, const std::string &synopsis) {
+  desc.add_options()("help,h", "this help");
+  po::store(po::command_line_parser(argc - 1, argv + 1).options(desc).positional(pos).run(), vm);
+  if (vm.count("help")) {
+    std::cout << "usage: spreadmap " << synopsis << "\n\n" << desc << "\n";
+    return false;
+  }
+  po::notify(vm);
+  return true;
+}
+
+int cmd_run(int argc, char **argv) {
+  po::options_description d("run options");
+  std::string file, only, out;
+  sm::RunOptions opt;
+  Common c;
+  d.add_options()("workflow", po::value(&file)->required(), "workflow file")(
+      "only", po::value(&only), "run only these stages, comma-separated (simulate,characterise,train,map)")(
+      "force", po::bool_switch(&opt.force), "recompute finished cases and stages")(
+      "out", po::value(&out), "run directory (default runs/<workflow name>)")(
+      "jobs,j", po::value(&opt.jobs)->default_value(1), "cases run at once");
+  c.add(d);
+  po::positional_options_description p;
+  p.add("workflow", 1);
+  po::variables_map vm;
+  if (!parse(argc, argv, d, p, vm, "run WORKFLOW [--only STAGE[,STAGE...]] [--force] [--out DIR] [--jobs N]")) return 0;
+  c.apply();
+  opt.quiet = c.quiet;
+  if (opt.jobs < 1) throw sm::InputError("error: --jobs must be at least 1");
+  std::size_t pos = 0;
+  while (!only.empty() && pos <= only.size()) {
+    const std::size_t comma = only.find(',', pos);
+    const std::string s = only.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+    if (!s.empty()) opt.only.insert(sm::lower(s));
+    if (comma == std::string::npos) break;
+    pos = comma + 1;
+  }
+  opt.out = out;
+  return sm::run_workflow(file, opt, sm::PluginRegistry::global());
+}
+
+int cmd_validate(int argc, char **argv) {
+  po::options_description d("validate options");
+  std::vector<std::string> files;
+  Common c;
+  d.add_options()("workflow", po::value(&files)->required()->multitoken(), "workflow file(s)");
+  c.add(d);
+  po::positional_options_description p;
+  p.add("workflow", -1);
+  po::variables_map vm;
+  if (!parse(argc, argv, d, p, vm, "validate WORKFLOW [WORKFLOW...]")) return 0;
+  c.apply();
+  int failures = 0;
+  for (const auto &f : files) {
+    try {
+      auto v = sm::validate_workflow(f, sm::PluginRegistry::global());
+      std::cout << f << ": ok (" << v.wf.stages.size() << " stages)\n";
+    } catch (const sm::Error &e) {
+      std::cerr << e.what() << "\n";
+      ++failures;
+    }
+  }
+  return failures ? sm::exit_input : 0;
+}
+
+int cmd_plugins(int argc, char **argv) {
+  po::options_description d("plugins options");
+  std::string kind, name, format = "table";
+  Common c;
+  d.add_options()("kind", po::value(&kind), "contact | spreader | metrics | surrogate")(
+      "name", po::value(&name), "one plugin: print its parameter schema")(
+      "format", po::value(&format)->default_value("table"), "table | json");
+  c.add(d);
+  po::positional_options_description p;
+  p.add("name", 1);
+  po::variables_map vm;
+  if (!parse(argc, argv, d, p, vm, "plugins [--kind KIND] [NAME] [--format table|json]")) return 0;
+  c.apply();
+  auto &reg = sm::PluginRegistry::global();
+  std::vector<std::string> kinds = sm::plugin_kinds();
+  if (!kind.empty()) {
+    if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end())
+      throw sm::InputError("error: --kind " + kind + ": not a plugin kind (" + sm::join(kinds) + ")");
+    kinds = {kind};
+  }
+  nlohmann::json all = nlohmann::json::array();
+  bool found = false;
+  for (const auto &k : kinds) {
+    for (const auto &n : reg.names(k)) {
+      if (!name.empty() && n != name) continue;
+      found = true;
+      const auto &pl = reg.get(k, n);
+      if (format == "json") {
+        auto j = sm::schema_json(*pl.descriptor);
+        j["file"] = pl.file.string();
+        all.push_back(j);
+      } else if (name.empty()) {
+        std::printf("%-10s %-16s %-8s %s\n", k.c_str(), n.c_str(), pl.descriptor->version, pl.descriptor->summary);
+      } else {
+        std::cout << sm::describe_schema(*pl.descriptor) << "  file: " << pl.file.string() << "\n";
+      }
+    }
+  }
+  if (!name.empty() && !found) {
+    std::vector<std::string> every;
+    for (const auto &k : kinds)
+      for (const auto &n : reg.names(k)) every.push_back(n);
+    const std::string near = sm::closest(name, every);
+    throw sm::InputError("error: no plugin named '" + name + "'" + (near.empty() ? "" : "; did you mean '" + near + "'?") +
+                         " available: " + sm::join(every));
+  }
+  if (format == "json") std::cout << all.dump(2) << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  auto logger = spdlog::stderr_color_mt("spreadmap");
+  spdlog::set_default_logger(logger);
+  spdlog::set_pattern("%^%l%$: %v");
+  spdlog::set_level(spdlog::level::info);
+  sm::install_stop_handlers();
+  if (argc < 2) {
+    std::cerr << usage;
+    return sm::exit_input;
+  }
+  const std::string cmd = argv[1];
+  try {
+    if (cmd == "--version" || cmd == "version") {
+      std::cout << "spreadmap " << SPREADMAP_VERSION << " (plugin ABI " << SPREADMAP_PLUGIN_ABI << ")\n";
+      return 0;
+    }
+    if (cmd == "--help" || cmd == "-h" || cmd == "help") {
+      std::cout << usage;
+      return 0;
+    }
+    if (cmd == "run") return cmd_run(argc, argv);
+    if (cmd == "validate") return cmd_validate(argc, argv);
+    if (cmd == "plugins") return cmd_plugins(argc, argv);
+    if (auto sub = sm::find_command(cmd)) return sub(argc - 1, argv + 1);
+    const std::vector<std::string> cmds = {"run", "validate", "plugins", "characterise", "train", "map", "query", "render"};
+    const std::string near = sm::closest(cmd, cmds);
+    std::cerr << "error: unknown command '" << cmd << "'" << (near.empty() ? "" : "; did you mean '" + near + "'?")
+              << "\n" << usage;
+    return sm::exit_input;
+  } catch (const sm::Error &e) {
+    std::cerr << e.what() << "\n";
+    return e.exit_code;
+  } catch (const po::error &e) {
+    std::cerr << "error: " << cmd << ": " << e.what() << "\n  see: spreadmap " << cmd << " --help\n";
+    return sm::exit_input;
+  } catch (const std::exception &e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return sm::exit_failure;
+  }
+}

@@ -1,0 +1,28 @@
+// The 3-D pieces of a particle snapshot (shared by snapshot() and animation_frames()).
+#pragma once
+
+#include <spreadmap/render/figures.hpp>
+
+#include <filesystem>
+#include <vector>
+
+#include <vtkActor.h>
+#include <vtkSmartPointer.h>
+
+namespace spreadmap::render::detail {
+
+struct SnapshotScene {
+  std::vector<vtkSmartPointer<vtkActor>> actors;
+};
+
+// speed_top: top of the colour range [m/s].
+SnapshotScene build_snapshot_scene(const SnapshotInput& in, double speed_top);
+double largest_speed(const SnapshotInput& in);
+void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, const Options& opt,
+                     double speed_top);
+
+// Roller (cylinder with a stripe showing its angle, and a spoke on its front face) or blade (box),
+// in millimetres; clipped to the domain's y extent.
+std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderPose& pose, const Box& domain);
+
+}  // namespace spreadmap::render::detail

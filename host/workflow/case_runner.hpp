@@ -1,0 +1,39 @@
+// One case of the design: the settled heap (computed once per distinct heap and shared by every
+// case that has the same powder, domain, contacts and spreader position), then the spreading run,
+// with checkpoints every `time.checkpoint_interval` wall-clock seconds and a clean stop on SIGINT.
+// Writes state.vtp (+ series/ and series.pvd when snapshots are asked for) and case.json.
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/registry.hpp"
+
+namespace spreadmap {
+
+namespace fs = std::filesystem;
+
+struct CaseRequest {
+  std::string id;                 // c000
+  nlohmann::json scene;           // resolved scene of this case (SI)
+  nlohmann::json inputs;          // design values of this case (SI)
+  fs::path dir;                   // cases/c000
+  fs::path heaps;                 // shared folder of settled heaps
+  int threads = 0;                // OpenMP threads for this case (0 = all)
+  std::function<void(double fraction, const std::string &detail)> progress;
+};
+
+// The hash of everything that decides the case's result.
+std::string case_hash(const nlohmann::json &scene);
+// The hash of everything that decides the settled heap.
+std::string heap_hash(const nlohmann::json &scene);
+
+// True when the case folder holds a finished result for exactly these inputs.
+bool case_finished(const fs::path &dir, const std::string &hash);
+
+// Runs (or resumes) the case; returns the case.json content. Throws Interrupted on SIGINT/SIGTERM
+// after saving a checkpoint, RunFailure when the simulation becomes unstable.
+nlohmann::json run_case(const CaseRequest &request, PluginRegistry &registry);
+
+}  // namespace spreadmap

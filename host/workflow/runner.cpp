@@ -1,0 +1,72 @@
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+
+#include "core/error.hpp"
+#include "core/suggest.hpp"
+#include "workflow/scene.hpp"
+#include "workflow/stage.hpp"
+
+namespace spreadmap {
+
+std::unique_ptr<Stage> make_stage(const std::string &kind) {
+  if (kind == "simulate") return make_simulate_stage();
+  if (kind == "characterise") return make_characterise_stage();
+  if (kind == "train") return make_train_stage();
+  if (kind == "map") return make_map_stage();
+  throw InputError("unknown stage '" + kind + "'");
+}
+
+static bool needs_scene(const Workflow &wf) {
+  for (const auto &s : wf.stages)
+    if (s.kind == "simulate" || s.kind == "characterise") return true;
+  return false;
+}
+
+Validated validate_workflow(const fs::path &file, PluginRegistry &registry) {
+  Validated v{load_workflow(file), {}, {}};
+  Diagnostics diag;
+  if (needs_scene(v.wf) || v.wf.root["scene"]) v.scene = resolve_scene(v.wf, registry, diag);
+  for (const auto &entry : v.wf.stages) {
+    auto stage = make_stage(entry.kind);
+    stage->validate(v.wf, entry, v.scene, registry, diag);
+    v.stages.push_back(std::move(stage));
+  }
+  diag.throw_if_any();
+  return v;
+}
+
+int run_workflow(const fs::path &file, const RunOptions &options, PluginRegistry &registry) {
+  Validated v = validate_workflow(file, registry);
+  for (const auto &only : options.only) {
+    bool found = false;
+    for (const auto &s : v.wf.stages) found |= iequals(s.kind, only);
+    if (!found)
+      throw InputError("error: --only " + only + ": this workflow has no such stage (stages: " +
+                       [&] { std::vector<std::string> k; for (auto &s : v.wf.stages) k.push_back(s.kind); return join(k); }() + ")");
+  }
+  RunDirectory run(options.out.empty() ? fs::path("runs") / v.wf.name : options.out);
+  run.update_manifest([&](nlohmann::json &m) {
+    m["workflow"] = {{"file", fs::absolute(file).string()}, {"name", v.wf.name}};
+    m["scene"] = v.scene;
+  });
+  spdlog::info("run directory: {}", run.root().string());
+  StageContext ctx{v.wf, v.scene, run, registry, options};
+  for (std::size_t i = 0; i < v.stages.size(); ++i) {
+    const std::string kind = v.wf.stages[i].kind;
+    bool selected = options.only.empty();
+    for (const auto &o : options.only) selected |= iequals(o, kind);
+    if (!selected) continue;
+    spdlog::info("stage {}: {}", i + 1, kind);
+    const auto t0 = std::chrono::steady_clock::now();
+    const std::string start = RunDirectory::now_iso();
+    v.stages[i]->run(ctx);
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    run.update_manifest([&](nlohmann::json &m) {
+      m["stages"][kind] = {{"start", start}, {"end", RunDirectory::now_iso()}, {"wall_seconds", wall}};
+    });
+  }
+  return exit_ok;
+}
+
+}  // namespace spreadmap

@@ -1,0 +1,264 @@
+#include "workflow/scene.hpp"
+
+#include <spreadmap/params.hpp>
+
+#include "core/schema.hpp"
+#include "core/suggest.hpp"
+
+namespace spreadmap {
+namespace sm = spreadmap;
+namespace {
+
+constexpr sm_param_v1 domain_params[] = {
+    sm::number("length", "m", 1e-3, 10, 0.04, "extent along x, the spreading direction (x from 0)"),
+    sm::number("width", "m", 1e-4, 10, 2.5e-3, "extent along y, the roller axis (y from 0)"),
+    sm::number("height", "m", 1e-3, 10, 0.015, "extent along z above the substrate (z from 0)"),
+    sm::boolean("periodic_x", false, "periodic along x (usually not: particles leave and are counted)"),
+    sm::boolean("periodic_y", true, "periodic along y: a strip stands for the full roller length"),
+};
+
+constexpr sm_param_v1 powder_params[] = {
+    sm::number("diameter", "m", 1e-6, 0.1, 250e-6, "sphere diameter (monodisperse) phi"),
+    sm::number("density", "kg/m^3", 1, 1e5, 4430, "material density rho (Ti-6Al-4V 4430)"),
+    sm::integer("count", 0, 1e8, 1600, "number of spheres in the heap (ignored when volume > 0)"),
+    sm::number("volume", "m^3", 0, 1, 0, "solid powder volume of the heap; 0 = use count"),
+    sm::enumeration("distribution", "mono|lognormal|table", "mono", "size distribution"),
+    sm::number("d50", "m", 1e-6, 0.1, 250e-6, "lognormal: median diameter D50"),
+    sm::number("sigma", "-", 0, 2, 0.1, "lognormal: standard deviation of ln(d)"),
+    sm::table("table", "table distribution: list of {diameter, fraction} (number fractions)"),
+    sm::integer("seed", 0, 4294967295.0, 1, "random seed of the heap insertion"),
+    sm::number("heap_from", "m", 0, 10, 6e-3, "x where the heap starts (behind it: the spreader)"),
+    sm::number("heap_to", "m", 0, 10, 13e-3, "x where the heap ends (a temporary wall while settling)"),
+    sm::number("heap_top", "m", 0, 10, 0, "insertion height limit; 0 = the domain height minus one diameter"),
+    sm::number("settle_time", "s", 0, 100, 0.1, "settling time under gravity before the spreader moves"),
+    sm::number("settle_speed", "m/s", 0, 10, 1e-3, "settling stops early once the fastest sphere is slower"),
+};
+
+constexpr sm_param_v1 time_params[] = {
+    sm::number("step", "s", 0, 1, 0, "time step dt; 0 = automatic (safety x the stable limit dt_crit)"),
+    sm::number("safety", "-", 1e-3, 1, 0.2, "automatic step as a fraction of dt_crit"),
+    sm::number("skin", "m", 0, 0.1, 0, "neighbour-list skin; 0 = 0.2 x the largest diameter"),
+    sm::number("relax", "s", 0, 100, 0.01, "time after the spreader stops before the final state"),
+    sm::number("checkpoint_interval", "s", 1, 1e6, 60, "wall-clock seconds between checkpoints"),
+    sm::integer("snapshots", 0, 100000, 0, "states written during spreading (series.pvd); 0 = final only"),
+    sm::number("overlap_limit", "-", 1e-4, 1, 0.1, "largest overlap allowed, as a fraction of the diameter"),
+};
+
+constexpr sm_param_v1 engine_params[] = {
+    sm::enumeration("preset", "quick|standard|paper", "quick", "fidelity preset the other keys override"),
+    sm::enumeration("precision", "double|float", "double", "floating-point precision of the particle state"),
+    sm::enumeration("backend", "auto|cpu|cuda", "auto", "where the DEM runs (auto: a GPU when present)"),
+    sm::integer("threads", 0, 1024, 0, "OpenMP threads; 0 = all cores"),
+    sm::boolean("deterministic", true, "results independent of thread count, bitwise run to run"),
+    sm::number("gravity", "m/s^2", 0, 1000, 9.81, "gravitational acceleration along -z"),
+};
+
+constexpr const char *quick_preset = R"(
+domain: {length: 30 mm, width: 1.25 mm, height: 12 mm, periodic_x: false, periodic_y: true}
+powder: {diameter: 250 um, density: 4430 kg/m^3, count: 1600, heap_from: 6 mm, heap_to: 13 mm,
+         settle_time: 0.06 s}
+substrate: {friction: 0.25, restitution: 0.8}
+spreader: {use: roller, diameter: 10 mm, gap: 0.5 mm, start: 6 mm, travel: 18 mm, U: 100 mm/s,
+           omega: 0 rad/s, friction: 0.12, restitution: 0.8}
+contact: {use: hooke_slider, v_max: 0.5 m/s, overlap_max: 5 um, friction: 0.185, restitution: 0.8}
+time: {safety: 0.2, relax: 0.01 s}
+)";
+
+// The peers' reduced scene (shared/peers/README.md): 5000 spheres on a 2.5 mm periodic strip.
+constexpr const char *standard_preset = R"(
+domain: {length: 50 mm, width: 2.5 mm, height: 15 mm, periodic_x: false, periodic_y: true}
+powder: {diameter: 250 um, density: 4430 kg/m^3, count: 5000, heap_from: 6 mm, heap_to: 18 mm,
+         settle_time: 0.1 s}
+substrate: {friction: 0.25, restitution: 0.8}
+spreader: {use: roller, diameter: 10 mm, gap: 0.5 mm, start: 6 mm, travel: 26 mm, U: 100 mm/s,
+           omega: 0 rad/s, friction: 0.12, restitution: 0.8}
+contact: {use: hooke_slider, v_max: 0.5 m/s, overlap_max: 2.5 um, friction: 0.185, restitution: 0.8}
+time: {step: 7.5e-7 s, relax: 0.01 s}
+)";
+
+// The study's scene: the full 70 mm roller, ~235,000 spheres, a 120 mm plate with the 50 x 50 mm
+// sampling region centred on it.
+constexpr const char *paper_preset = R"(
+domain: {length: 120 mm, width: 70 mm, height: 20 mm, periodic_x: false, periodic_y: false}
+powder: {diameter: 250 um, density: 4430 kg/m^3, count: 235000, heap_from: 6 mm, heap_to: 24 mm,
+         settle_time: 0.1 s}
+substrate: {friction: 0.25, restitution: 0.8}
+spreader: {use: roller, diameter: 10 mm, length: 70 mm, gap: 0.5 mm, start: 6 mm, travel: 104 mm,
+           U: 100 mm/s, omega: 0 rad/s, friction: 0.12, restitution: 0.8}
+contact: {use: hooke_slider, v_max: 0.5 m/s, overlap_max: 2.5 um, friction: 0.185, restitution: 0.8}
+time: {safety: 0.2, relax: 0.01 s}
+)";
+
+struct Section {
+  const char *name;
+  const sm_param_v1 *params;
+  std::size_t n;
+};
+constexpr Section host_sections[] = {
+    {"domain", domain_params, std::size(domain_params)},
+    {"powder", powder_params, std::size(powder_params)},
+    {"time", time_params, std::size(time_params)},
+};
+
+const std::vector<std::string> scene_keys = {"preset", "precision", "backend", "threads", "deterministic", "gravity",
+                                             "domain", "powder", "time", "contact", "substrate", "spreader"};
+
+// The preset's node for a section, overlaid with the user's node (user keys win).
+YAML::Node overlay(const YAML::Node &preset, const YAML::Node &user) {
+  YAML::Node out(YAML::NodeType::Map);
+  if (preset && preset.IsMap())
+    for (const auto &kv : preset) out[kv.first.as<std::string>()] = kv.second;
+  if (user && user.IsMap())
+    for (const auto &kv : user) out[kv.first.as<std::string>()] = kv.second;
+  return out;
+}
+
+// Validates a section key by key, reporting positions in the file each key came from.
+nlohmann::json validate_split(const SchemaView &schema, const YAML::Node &preset, const YAML::Node &user,
+                              const std::string &scene_file, const std::string &section, Diagnostics &diag,
+                              const std::set<std::string> &skip = {}) {
+  const std::string preset_label = "<preset>";
+  auto values = validate_params(schema, preset, preset_label, section, diag, skip, false);
+  if (user && user.IsDefined() && !user.IsNull()) {
+    auto mine = validate_params(schema, user, scene_file, section, diag, skip, false);
+    for (auto &[k, v] : mine.items()) values[k] = v;
+  }
+  fill_defaults(schema, values, Location::of(scene_file, user ? user : preset), section, diag);
+  return values;
+}
+
+}  // namespace
+
+const char *preset_text(const std::string &preset) {
+  if (preset == "standard") return standard_preset;
+  if (preset == "paper") return paper_preset;
+  return quick_preset;
+}
+
+nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagnostics &diag) {
+  const std::string &file = wf.scene_file;
+  const YAML::Node &user = wf.scene;
+  nlohmann::json scene = nlohmann::json::object();
+  for (const auto &kv : user) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::find(scene_keys.begin(), scene_keys.end(), key) == scene_keys.end()) {
+      const std::string near = closest(key, scene_keys);
+      diag.error(Location::of(file, kv.first), "scene." + key, "unknown key",
+                 (near.empty() ? "" : "did you mean '" + near + "'? ") + "known: " + join(scene_keys));
+    }
+  }
+  // top-level engine keys
+  YAML::Node top(YAML::NodeType::Map);
+  for (const auto &kv : user)
+    if (SchemaView{engine_params, std::size(engine_params)}.find(kv.first.as<std::string>())) top[kv.first] = kv.second;
+  auto engine = validate_params({engine_params, std::size(engine_params)}, top, file, "scene", diag);
+  scene.update(engine);
+  const std::string preset = engine.value("preset", std::string("quick"));
+  const YAML::Node p = YAML::Load(preset_text(preset));
+
+  for (const auto &s : host_sections)
+    scene[s.name] = validate_split({s.params, s.n}, p[s.name], user[s.name], file, std::string("scene.") + s.name, diag);
+
+  // contact law: particle-particle, then substrate and spreader overrides of the same law
+  const YAML::Node contact = overlay(p["contact"], user["contact"]);
+  const std::string law_name = contact["use"] ? contact["use"].as<std::string>() : "";
+  const LoadedPlugin *law = nullptr;
+  try {
+    law = &registry.get("contact", law_name);
+  } catch (const std::exception &e) {
+    diag.error(Location::of(file, user["contact"] && user["contact"]["use"] ? user["contact"]["use"] : user), "scene.contact.use", e.what());
+  }
+  const YAML::Node spreader = overlay(p["spreader"], user["spreader"]);
+  const std::string geo_name = spreader["use"] ? spreader["use"].as<std::string>() : "";
+  const LoadedPlugin *geo = nullptr;
+  try {
+    geo = &registry.get("spreader", geo_name);
+  } catch (const std::exception &e) {
+    diag.error(Location::of(file, user["spreader"] && user["spreader"]["use"] ? user["spreader"]["use"] : user), "scene.spreader.use", e.what());
+  }
+  if (law) {
+    const auto schema = SchemaView::of(*law->descriptor);
+    auto pp = validate_split(schema, p["contact"], user["contact"], file, "scene.contact", diag, {"use"});
+    scene["contact"] = {{"use", law_name}, {"params", pp}};
+    // substrate: law keys only
+    auto sub = validate_params(schema, p["substrate"], "<preset>", "scene.substrate", diag, {}, false);
+    if (user["substrate"]) {
+      auto mine = validate_params(schema, user["substrate"], file, "scene.substrate", diag, {}, false);
+      for (auto &[k, v] : mine.items()) sub[k] = v;
+    }
+    nlohmann::json sub_law = pp;
+    for (auto &[k, v] : sub.items()) sub_law[k] = v;
+    scene["substrate"] = {{"law", sub_law}};
+    if (geo) {
+      // spreader section: geometry keys go to the geometry, law keys to the particle-spreader law
+      const auto gschema = SchemaView::of(*geo->descriptor);
+      std::set<std::string> law_keys, geo_keys = {"use"};
+      for (std::size_t i = 0; i < schema.n; ++i) law_keys.insert(schema.params[i].name);
+      for (std::size_t i = 0; i < gschema.n; ++i) geo_keys.insert(gschema.params[i].name);
+      auto gvals = validate_split(gschema, p["spreader"], user["spreader"], file, "scene.spreader", diag,
+                                  [&] { auto k = law_keys; k.insert("use"); return k; }());
+      nlohmann::json spr_law = pp;
+      auto lp = validate_params(schema, p["spreader"], "<preset>", "scene.spreader", diag, geo_keys, false);
+      for (auto &[k, v] : lp.items()) spr_law[k] = v;
+      if (user["spreader"]) {
+        auto mine = validate_params(schema, user["spreader"], file, "scene.spreader", diag, geo_keys, false);
+        for (auto &[k, v] : mine.items()) spr_law[k] = v;
+      }
+      scene["spreader"] = {{"use", geo_name}, {"params", gvals}, {"law", spr_law}};
+    }
+  }
+  return scene;
+}
+
+bool find_scene_key(const nlohmann::json &scene, PluginRegistry &registry, const std::string &name, SceneKey &out,
+                    std::string &why) {
+  using ptr = nlohmann::json::json_pointer;
+  std::string section, key;
+  static const std::map<std::string, std::pair<std::string, std::string>> aliases = {
+      {"U", {"spreader", "U"}}, {"omega", {"spreader", "omega"}}, {"gap", {"spreader", "gap"}},
+      {"seed", {"powder", "seed"}}};
+  if (auto it = aliases.find(name); it != aliases.end()) {
+    section = it->second.first;
+    key = it->second.second;
+  } else if (auto dot = name.find('.'); dot != std::string::npos) {
+    section = name.substr(0, dot);
+    key = name.substr(dot + 1);
+  } else {
+    why = "unknown design variable '" + name + "': write U, omega, gap, seed or a dotted scene key such as contact.friction";
+    return false;
+  }
+  out.name = name;
+  for (const auto &s : host_sections)
+    if (section == s.name) {
+      if (const sm_param_v1 *p = SchemaView{s.params, s.n}.find(key)) {
+        out.path = ptr("/" + section + "/" + key);
+        out.param = p;
+        return true;
+      }
+      why = "scene." + section + " has no key '" + key + "'";
+      return false;
+    }
+  if ((section == "contact" || section == "spreader" || section == "substrate") && scene.contains(section)) {
+    if (section == "spreader") {
+      const auto &geo = registry.get("spreader", scene["spreader"]["use"].get<std::string>());
+      if (const sm_param_v1 *p = SchemaView::of(*geo.descriptor).find(key)) {
+        out.path = ptr("/spreader/params/" + key);
+        out.param = p;
+        return true;
+      }
+    }
+    const auto &law = registry.get("contact", scene["contact"]["use"].get<std::string>());
+    if (const sm_param_v1 *p = SchemaView::of(*law.descriptor).find(key)) {
+      out.path = ptr(section == "contact" ? "/contact/params/" + key
+                                          : section == "substrate" ? "/substrate/law/" + key : "/spreader/law/" + key);
+      out.param = p;
+      return true;
+    }
+    why = "scene." + section + " has no key '" + key + "'";
+    return false;
+  }
+  why = "unknown scene section '" + section + "' in design variable '" + name + "'";
+  return false;
+}
+
+}  // namespace spreadmap

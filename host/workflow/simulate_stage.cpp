@@ -1,0 +1,144 @@
+// simulate: runs every case of the design (one after another, or --jobs N at once), each
+// resumable; a finished case whose inputs did not change is never recomputed.
+#include <spdlog/spdlog.h>
+
+#include <atomic>
+#include <thread>
+
+#include "core/error.hpp"
+#include "core/files.hpp"
+#include "core/schema.hpp"
+#include "core/stop.hpp"
+#include "workflow/case_runner.hpp"
+#include "workflow/design.hpp"
+#include "workflow/progress.hpp"
+#include "workflow/stage.hpp"
+
+namespace spreadmap {
+namespace {
+
+class SimulateStage : public Stage {
+ public:
+  void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &scene, PluginRegistry &registry,
+                Diagnostics &diag) override {
+    const std::string file = wf.file.string();
+    for (const auto &kv : entry.config) {
+      const std::string key = kv.first.as<std::string>();
+      if (key != "design" && key != "render")
+        diag.error(Location::of(file, kv.first), "simulate." + key, "unknown key", "known: design, render");
+    }
+    if (scene.is_null() || !scene.contains("spreader")) return;  // scene errors already reported
+    design_ = parse_design(entry.config["design"], file, "simulate.design", scene, registry, diag);
+    if (design_.type == "adaptive")
+      diag.error(Location::of(file, entry.config["design"]["type"]), "simulate.design.type",
+                 "the adaptive design runs through the train stage's gp model: not available in this build");
+  }
+
+  void run(StageContext &ctx) override {
+    const std::size_t n = design_.cases.size();
+    std::vector<CaseRequest> todo;
+    nlohmann::json cases = nlohmann::json::array();
+    for (std::size_t i = 0; i < n; ++i) {
+      CaseRequest req;
+      req.id = RunDirectory::case_id(i);
+      req.scene = case_scene(ctx.scene, design_, i);
+      req.inputs = case_inputs(design_, i);
+      req.dir = ctx.run.case_dir(req.id);
+      req.heaps = ctx.run.heaps();
+      const std::string hash = case_hash(req.scene);
+      cases.push_back({{"id", req.id}, {"inputs", req.inputs}, {"hash", hash}});
+      if (!ctx.options.force && case_finished(req.dir, hash)) continue;
+      if (ctx.options.force) {
+        std::error_code ec;
+        fs::remove(req.dir / "checkpoint.bin", ec);
+      }
+      write_atomic(req.dir / "scene.json", req.scene.dump(2) + "\n");
+      todo.push_back(std::move(req));
+    }
+    ctx.run.update_manifest([&](nlohmann::json &m) {
+      nlohmann::json old = m.value("cases", nlohmann::json::array());
+      for (auto &c : cases)
+        for (const auto &o : old)
+          if (o.value("id", "") == c["id"] && o.value("hash", "") == c["hash"])
+            for (const char *k : {"start", "end", "wall_seconds", "status"})
+              if (o.contains(k)) c[k] = o[k];
+      m["cases"] = cases;
+      m["design"] = {{"type", design_.type}, {"variables", [&] {
+                        auto v = nlohmann::json::array();
+                        for (const auto &d : design_.variables) v.push_back({{"name", d.key.name}, {"unit", d.key.param->unit}});
+                        return v;
+                      }()}};
+      m["plugins"]["contact/" + ctx.scene["contact"]["use"].get<std::string>()] =
+          ctx.registry.get("contact", ctx.scene["contact"]["use"]).descriptor->version;
+      m["plugins"]["spreader/" + ctx.scene["spreader"]["use"].get<std::string>()] =
+          ctx.registry.get("spreader", ctx.scene["spreader"]["use"]).descriptor->version;
+    });
+    spdlog::info("simulate: {} cases, {} to run, {} finished already", n, todo.size(), n - todo.size());
+    if (ctx.scene["backend"] == "cuda")
+      throw InputError("error: scene.backend: cuda was requested, but this build has no CUDA backend; set backend: cpu or auto");
+    if (todo.empty()) return;
+    static bool said = false;
+    if (!said && ctx.scene["backend"] == "auto") spdlog::info("backend: cpu (no CUDA backend in this build)");
+    said = true;
+
+    Progress progress("simulate", todo.size(), ctx.options.quiet);
+    const int jobs = std::max(1, std::min<int>(ctx.options.jobs, int(todo.size())));
+    const int cores = std::max(1u, std::thread::hardware_concurrency());
+    const int threads_requested = ctx.scene["threads"].get<int>();
+    std::atomic<std::size_t> next{0};
+    std::mutex error_mutex;
+    std::exception_ptr first_error;
+    auto worker = [&] {
+      for (;;) {
+        const std::size_t k = next++;
+        if (k >= todo.size() || stop_requested()) return;
+        {
+          std::lock_guard<std::mutex> g(error_mutex);
+          if (first_error) return;
+        }
+        CaseRequest &req = todo[k];
+        req.threads = threads_requested > 0 ? threads_requested : std::max(1, cores / jobs);
+        req.progress = [&progress, k, id = req.id](double f, const std::string &d) { progress.update(k, f, id + " " + d); };
+        const std::string start = RunDirectory::now_iso();
+        const auto t0 = std::chrono::steady_clock::now();
+        try {
+          const auto result = run_case(req, ctx.registry);
+          const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+          ctx.run.update_manifest([&](nlohmann::json &m) {
+            for (auto &c : m["cases"])
+              if (c["id"] == req.id) {
+                c["start"] = start;
+                c["end"] = RunDirectory::now_iso();
+                c["wall_seconds"] = wall;
+                c["status"] = "done";
+              }
+          });
+          progress.done_item();
+          spdlog::info("{} done: {} steps, {:.1f} s, {:.3g} particle-steps/s, {} removed", req.id,
+                       result["steps"].get<double>(), wall, result["particle_steps_per_second"].get<double>(),
+                       result["removed"].get<double>());
+        } catch (...) {
+          std::lock_guard<std::mutex> g(error_mutex);
+          if (!first_error) first_error = std::current_exception();
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (int j = 1; j < jobs; ++j) pool.emplace_back(worker);
+    worker();
+    for (auto &t : pool) t.join();
+    progress.finish();
+    if (first_error) std::rethrow_exception(first_error);
+    if (stop_requested())
+      throw Interrupted("interrupted: finished cases are kept; run the same command again to resume");
+  }
+
+ private:
+  Design design_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_simulate_stage() { return std::make_unique<SimulateStage>(); }
+
+}  // namespace spreadmap

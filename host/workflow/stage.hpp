@@ -1,0 +1,57 @@
+// A stage reads only the files of the stage before it (in the run directory) and writes its own,
+// so each can be re-run, swapped or run alone (`--only train`). validate() checks its settings
+// before any stage runs; run() does the work.
+#pragma once
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <string>
+
+#include "core/diagnostics.hpp"
+#include "core/registry.hpp"
+#include "workflow/run_dir.hpp"
+#include "workflow/workflow.hpp"
+
+namespace spreadmap {
+
+struct RunOptions {
+  bool force = false;
+  bool quiet = false;
+  int jobs = 1;
+  std::set<std::string> only;  // empty = all stages
+  fs::path out;                // run directory; empty = runs/<name>
+};
+
+struct StageContext {
+  const Workflow &wf;
+  const nlohmann::json &scene;  // resolved (SI)
+  RunDirectory &run;
+  PluginRegistry &registry;
+  const RunOptions &options;
+};
+
+class Stage {
+ public:
+  virtual ~Stage() = default;
+  virtual void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &scene,
+                        PluginRegistry &registry, Diagnostics &diag) = 0;
+  virtual void run(StageContext &ctx) = 0;
+};
+
+std::unique_ptr<Stage> make_simulate_stage();
+std::unique_ptr<Stage> make_characterise_stage();
+std::unique_ptr<Stage> make_train_stage();
+std::unique_ptr<Stage> make_map_stage();
+std::unique_ptr<Stage> make_stage(const std::string &kind);
+
+// The whole workflow: load, validate everything (scene, every stage), then run the selected
+// stages in order. validate_only stops after validation.
+struct Validated {
+  Workflow wf;
+  nlohmann::json scene;
+  std::vector<std::unique_ptr<Stage>> stages;
+};
+Validated validate_workflow(const fs::path &file, PluginRegistry &registry);
+int run_workflow(const fs::path &file, const RunOptions &options, PluginRegistry &registry);
+
+}  // namespace spreadmap

@@ -1,0 +1,105 @@
+#include "workflow/workflow.hpp"
+
+#include "core/error.hpp"
+#include "core/files.hpp"
+#include "core/suggest.hpp"
+
+namespace spreadmap {
+
+YAML::Node load_yaml(const fs::path &file) {
+  const std::string text = read_text(file);
+  try {
+    return YAML::Load(text);
+  } catch (const YAML::Exception &e) {
+    Location at{file.string(), e.mark.line + 1, e.mark.column + 1};
+    throw InputError("error: " + at.str() + ": YAML syntax: " + e.msg +
+                     "\n  check indentation, colons and brackets on this line or the one before");
+  }
+}
+
+Workflow load_workflow(const fs::path &file) {
+  Workflow wf;
+  wf.file = file;
+  wf.dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  wf.root = load_yaml(file);
+  const std::string f = file.string();
+  Diagnostics diag;
+  if (!wf.root.IsMap()) {
+    diag.error(Location::of(f, wf.root), "", "a workflow is a YAML mapping with version, name, scene and stages");
+    diag.throw_if_any();
+  }
+  static const std::vector<std::string> top = {"version", "name", "scene", "stages", "description"};
+  for (const auto &kv : wf.root) {
+    const std::string key = kv.first.as<std::string>();
+    if (std::find(top.begin(), top.end(), key) == top.end()) {
+      const std::string near = closest(key, top);
+      diag.error(Location::of(f, kv.first), key, "unknown key",
+                 (near.empty() ? "" : "did you mean '" + near + "'? ") + "known: " + join(top));
+    }
+  }
+  const YAML::Node version = wf.root["version"];
+  if (!version) diag.error(Location::of(f, wf.root), "version", "missing", "add `version: 1` as the first line");
+  else if (!version.IsScalar() || version.Scalar() != "1")
+    diag.error(Location::of(f, version), "version", "this spreadmap reads workflow version 1, not '" +
+               (version.IsScalar() ? version.Scalar() : std::string("?")) + "'");
+  const YAML::Node name = wf.root["name"];
+  if (!name || !name.IsScalar() || name.Scalar().empty()) {
+    wf.name = file.stem().string();
+  } else {
+    wf.name = name.Scalar();
+    if (wf.name.find_first_of("/\\ ") != std::string::npos)
+      diag.error(Location::of(f, name), "name", "'" + wf.name + "' cannot name a folder: use letters, digits, - and _");
+  }
+  YAML::Node scene = wf.root["scene"];
+  wf.scene_file = f;
+  if (scene && scene.IsScalar()) {
+    const fs::path sf = wf.resolve(scene.Scalar());
+    if (!fs::exists(sf)) {
+      diag.error(Location::of(f, scene), "scene", "the scene file " + sf.string() + " does not exist",
+                 "paths in a workflow are relative to the workflow file's folder");
+    } else {
+      wf.scene_file = sf.string();
+      scene = load_yaml(sf);
+    }
+  }
+  if (scene && !scene.IsMap() && !scene.IsScalar())
+    diag.error(Location::of(f, scene), "scene", "expected a mapping (or the name of a scene file)");
+  wf.scene = scene && scene.IsMap() ? scene : YAML::Node(YAML::NodeType::Map);
+  const YAML::Node stages = wf.root["stages"];
+  if (!stages) {
+    diag.error(Location::of(f, wf.root), "stages", "missing", "add a list, e.g. stages: [{simulate: {...}}, {characterise: {...}}]");
+  } else if (!stages.IsSequence()) {
+    diag.error(Location::of(f, stages), "stages", "expected a list of stages (- simulate: {...})");
+  } else {
+    for (std::size_t i = 0; i < stages.size(); ++i) {
+      const YAML::Node s = stages[i];
+      const std::string path = "stages[" + std::to_string(i) + "]";
+      std::string kind;
+      YAML::Node config;
+      if (s.IsScalar()) {
+        kind = s.Scalar();
+      } else if (s.IsMap() && s.size() == 1) {
+        kind = s.begin()->first.as<std::string>();
+        config = s.begin()->second;
+      } else {
+        diag.error(Location::of(f, s), path, "a stage is one key (simulate, characterise, train or map) with its settings");
+        continue;
+      }
+      if (std::find(stage_kinds().begin(), stage_kinds().end(), kind) == stage_kinds().end()) {
+        const std::string near = closest(kind, stage_kinds());
+        diag.error(Location::of(f, s.IsMap() ? s.begin()->first : s), path, "unknown stage '" + kind + "'",
+                   (near.empty() ? "" : "did you mean '" + near + "'? ") + "stages: " + join(stage_kinds()));
+        continue;
+      }
+      if (config && !config.IsNull() && !config.IsMap()) {
+        diag.error(Location::of(f, config), path + "." + kind, "expected a mapping of settings");
+        continue;
+      }
+      wf.stages.push_back({kind, config && config.IsMap() ? config : YAML::Node(YAML::NodeType::Map), Location::of(f, s)});
+    }
+  }
+  diag.throw_if_any();
+  return wf;
+}
+
+}  // namespace spreadmap

@@ -1,0 +1,70 @@
+// contact/hooke_history: linear spring-dashpot normal force parametrised as the study's (see
+// hooke_slider.hpp: K_n = m_eq V_max^2/Delta_max^2, beta_n from eps, optional clamp and correction)
+// with a Cundall-Strack tangential spring instead of the slider:
+//
+//   F_t = -k_t s - beta_t v_t, |F_t| <= mu |F_n|,   s += v_t dt (rotated into the tangent plane each step)
+//   k_t = kappa K_n (kappa = tangential_stiffness_ratio, 2/7 by default),
+//   beta_t = 2 zeta sqrt(k_t m_t), m_t = (2/7) m_eq: the tangential oscillation has the same damping ratio
+//   as the normal one, and with kappa = 2/7 also the same frequency V_max/Delta_max.
+//
+// This is the physics of LIGGGHTS' hooke/stiffness with tangential history (and LAMMPS
+// gran/hooke/history): a stuck contact holds a static tangential force, so nothing creeps.
+// Reference: Cundall & Strack 1979; LAMMPS pair gran/hooke/history (slip reset of the spring).
+// Assumptions: spheres, cohesionless; F_n unclamped unless clamp_normal; the cap uses |F_n|.
+// Units SI. History: 3 values per contact, the spring elongation s [m] in the global frame.
+#pragma once
+#include <spreadmap/contact.hpp>
+#include <spreadmap/contact_parts.hpp>
+
+#include <cmath>
+
+namespace spreadmap {
+
+struct HookeHistory {
+  static constexpr sm_param_v1 params[] = {
+      param_v_max,
+      param_overlap_max,
+      param_restitution,
+      param_friction,
+      number("tangential_stiffness_ratio", "-", 1e-3, 10, 2.0 / 7.0,
+             "kappa = k_t / K_n: tangential spring stiffness relative to the normal one (2/7: equal frequencies)"),
+      param_clamp_normal,
+      param_clamp_correction,
+      param_rolling_friction,
+  };
+  static constexpr int history = 3;
+
+  LinearNormal normal;
+  double mu;
+  double kappa;           // k_t / K_n
+  double tangent_rate;    // beta_t / m_eq = 2 zeta omega0 sqrt(kappa 2/7) [1/s]
+  double mu_r;
+
+  static HookeHistory bind(const Values &v) {
+    const LinearNormal n = LinearNormal::bind(v);
+    const double kappa = v["tangential_stiffness_ratio"];
+    return {n, v["friction"], kappa, 2 * n.zeta * n.omega0 * std::sqrt(kappa * 2.0 / 7.0), v["rolling_friction"]};
+  }
+
+  // The tangential mode (k_t over m_t) is the faster one when kappa > 2/7.
+  double natural_frequency(double, double) const { return normal.omega0 * std::sqrt(max(1.0, kappa * 3.5)); }
+  double damping_ratio(double, double) const { return normal.zeta; }
+  bool makes_torque() const { return mu > 0 || mu_r > 0; }
+
+  template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
+    ContactForce<Real> f;
+    if (!(c.overlap > 0)) {
+      clear_history(hist, history);
+      return f;
+    }
+    f.normal = normal.force(c.m_eq, c.overlap, c.v_n);
+    const Real fn_abs = f.normal < 0 ? -f.normal : f.normal;
+    const Real w = Real(normal.omega0);
+    const Real k_t = Real(kappa) * c.m_eq * w * w;
+    f.tangent = tangential_spring(c.normal, c.v_t, k_t, c.m_eq * Real(tangent_rate), Real(mu) * fn_abs, c.dt, hist);
+    f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    return f;
+  }
+};
+
+}  // namespace spreadmap

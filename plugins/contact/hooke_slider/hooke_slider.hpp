@@ -1,0 +1,75 @@
+// contact/hooke_slider: the reference study's model (its Eq. 1-4), a linear spring-dashpot in the
+// normal direction and a Coulomb slider without tangential spring.
+//
+//   F_n = K_n delta - beta_n v_n,  K_n = m_eq V_max^2 / Delta_max^2,
+//   beta_n = -2 ln(eps) sqrt(K_n m_eq / (pi^2 + ln^2 eps)) = 2 zeta sqrt(K_n m_eq)
+//   F_t = -mu |F_n| e_t,           e_t = v_t / |v_t| (slip at the contact point, spin included)
+//
+// Every contact therefore has the natural frequency omega0 = V_max/Delta_max whatever the sizes
+// (defaults 0.5 m/s and 2.5 um: omega0 = 2e5 rad/s, K_n = 724.857 N/m between two 250 um Ti-6Al-4V
+// spheres and 1449.71 N/m against a wall, contact time pi/omega_d = 1.5748e-5 s at eps = 0.8).
+// Assumptions: spheres, cohesionless; the force is not clamped by default (the study's Eq. 3 and the
+// LIGGGHTS peer runs), so the dashpot may pull at the end of a contact and the isolated collision
+// rebounds with exactly eps; |F_n| in the slider keeps friction active during that tail. Options:
+// clamp_normal (F_n >= 0; restitution becomes exp(-2 zeta acos zeta / sqrt(1 - zeta^2))) and
+// clamp_correction (damping solved at bind() so the clamped contact still returns eps).
+// Zero slip (slider): stick (default) limits the force to m_t |v_t| / (2 dt), m_t = (2/7) m_eq, which
+// removes half the slip per step below the Coulomb cap; viscous is LIGGGHTS' min(mu|F_n|, m_eq gamma_t
+// |v_t|) (gamma_t = beta_n/m_eq by default; note (7/2) gamma_t dt must stay below 2); coulomb is the
+// textbook slider with no force below slip_speed_min, which chatters: each step the slip reverses
+// and full friction acts in alternate directions while a contact should be stuck.
+// Optional rolling resistance (constant directional torque, see contact_parts.hpp).
+// Reference: the study in /work/shared/reference-study.txt; Cundall & Strack 1979. Units SI.
+// History: none.
+#pragma once
+#include <spreadmap/contact.hpp>
+#include <spreadmap/contact_parts.hpp>
+
+namespace spreadmap {
+
+struct HookeSlider {
+  static constexpr sm_param_v1 params[] = {
+      param_v_max,
+      param_overlap_max,
+      param_restitution,
+      param_friction,
+      enumeration("slider", "stick|viscous|coulomb", "stick",
+                  "zero-slip handling: stick (half the slip removed per step), viscous (LIGGGHTS), coulomb (threshold)"),
+      number("slip_damping", "1/s", 0, 1e12, 0,
+             "gamma_t: viscous slider rate, F_t = -min(mu|F_n|, m_eq gamma_t |v_t|); 0 = beta_n/m_eq as LIGGGHTS"),
+      number("slip_speed_min", "m/s", 0, 1, 1e-6, "coulomb slider: no tangential force while |v_t| <= this slip speed"),
+      param_clamp_normal,
+      param_clamp_correction,
+      param_rolling_friction,
+  };
+  static constexpr int history = 0;
+
+  LinearNormal normal;
+  double mu;              // sliding friction
+  Slider slider;
+  double slip_rate;       // gamma_t [1/s]
+  double slip_speed_min;  // [m/s]
+  double mu_r;            // rolling friction
+
+  static HookeSlider bind(const Values &v) {
+    const LinearNormal n = LinearNormal::bind(v);
+    const double gamma = v["slip_damping"] > 0 ? v["slip_damping"] : 2 * n.zeta * n.omega0;
+    return {n, v["friction"], slider_from_name(v.str("slider")), gamma, v["slip_speed_min"], v["rolling_friction"]};
+  }
+
+  double natural_frequency(double, double) const { return normal.omega0; }
+  double damping_ratio(double, double) const { return normal.zeta; }
+  bool makes_torque() const { return mu > 0 || mu_r > 0; }
+
+  template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *) const {
+    ContactForce<Real> f;
+    if (!(c.overlap > 0)) return f;
+    f.normal = normal.force(c.m_eq, c.overlap, c.v_n);
+    const Real fn_abs = f.normal < 0 ? -f.normal : f.normal;
+    f.tangent = slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min));
+    f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    return f;
+  }
+};
+
+}  // namespace spreadmap

@@ -1,0 +1,78 @@
+// metrics/layer: characterises a spread powder layer from its spheres.
+//
+// Samples the height map h(x, y) (top of the highest sphere above the substrate) on a grid of square
+// cells over the host's sampling region and reports mean height, R_q (std. deviation of h), V_s (mean
+// height x U, the study's spread rate per unit roller width), solid thickness with spheres clipped
+// exactly by the region, packing fractions, coverage and the largest bare patch, all in SI with their
+// units. The algorithm lives in layer_metrics / heightmap (plain C++, tested directly); this file is
+// only the C boundary. The plugin writes no file: the host asks for the last map through heightmap().
+#include <spreadmap/metric.hpp>
+#include <spreadmap/plugin.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "layer_metrics.hpp"
+
+namespace sm = spreadmap;
+
+namespace {
+
+class Layer {
+ public:
+  static constexpr sm_param_v1 params[] = {
+      sm::number("grid", "m", 0.0, 1.0, 0.0,
+                 "height-map cell size (square cells, sampled at their centres); 0 = mean sphere diameter / 5"),
+  };
+  static Layer bind(const sm::Values &v) {
+    Layer layer;
+    layer.cell_ = v["grid"];
+    if (layer.cell_ < 0) throw sm::ParamError("grid = " + std::to_string(layer.cell_) + " m must be >= 0 (0 = d/5)");
+    return layer;
+  }
+
+  const char *evaluate(const sm_layer_input_v1 &in) {
+    last_ = sm::layer::characterise_layer(in, cell_);
+    json_ = sm::layer::metrics_json(last_);
+    return json_.c_str();
+  }
+  const sm::layer::LayerResult &last() const { return last_; }
+
+ private:
+  double cell_ = 0;
+  sm::layer::LayerResult last_;
+  std::string json_;  // owned here: valid until the next evaluate() or destroy()
+};
+
+const char *evaluate(void *self, const sm_layer_input_v1 *in, sm_error *err) {
+  try {
+    if (!self || !in) throw std::invalid_argument("evaluate called without an instance or an input");
+    return static_cast<Layer *>(self)->evaluate(*in);
+  } catch (const std::exception &e) {
+    sm::detail::set_error(err, e.what());
+  } catch (...) {
+    sm::detail::set_error(err, "unknown exception while characterising the layer");
+  }
+  return nullptr;
+}
+
+const double *heightmap(const void *self, uint32_t *nx, uint32_t *ny, double *x0, double *y0, double *cell) {
+  const auto *layer = static_cast<const Layer *>(self);
+  const sm::layer::LayerResult *r = layer ? &layer->last() : nullptr;
+  const bool have = r && !r->height.empty();
+  if (nx) *nx = have ? r->grid.nx : 0;
+  if (ny) *ny = have ? r->grid.ny : 0;
+  if (x0) *x0 = have ? r->grid.x0 : 0;
+  if (y0) *y0 = have ? r->grid.y0 : 0;
+  if (cell) *cell = have ? r->grid.cell : 0;
+  return have ? r->height.data() : nullptr;
+}
+
+const sm_metrics_ops_v1 ops_table = {&evaluate, &heightmap};
+
+}  // namespace
+
+SPREADMAP_PLUGIN("metrics", Layer, "layer", "1.0.0",
+                 "height map, R_q, V_s, solid thickness, packing, coverage and bare patches of a spread layer",
+                 &ops_table)

@@ -1,0 +1,54 @@
+// Layer characterisation: the height map of a spread layer and the metrics derived from it.
+//
+// Metrics (SI): mean_height [m]; rq, the population standard deviation of h [m]; vs = mean height x U
+// [m^2/s]; solid_thickness, sphere volume inside the region (spheres clipped exactly by the region's
+// vertical planes) over the region's area [m]; packing_fraction, solid volume over the volume between
+// the substrate and the height map [-]; packing_fraction_gap, solid volume over region area x gap [-];
+// coverage, share of covered grid points [-]; largest_bare_patch, area of the largest 4-connected set
+// of uncovered grid points [m^2] (not wrapped across a periodic strip); particles_in_region, centres in
+// [x0, x1) x [y0, y1) [-]; cell, the grid's cell [m]. An undefined value is NaN here and null in JSON,
+// never a silent number: vs without a speed, packing_fraction when the map's volume is 0,
+// packing_fraction_gap without a gap.
+#pragma once
+#include <spreadmap/metric.hpp>
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "heightmap.hpp"
+
+namespace spreadmap::layer {
+
+struct LayerMetrics {
+  double mean_height = 0, rq = 0, vs = 0, solid_thickness = 0, packing_fraction = 0, packing_fraction_gap = 0;
+  double coverage = 0, largest_bare_patch = 0, cell = 0;
+  std::uint64_t particles_in_region = 0;
+};
+
+struct LayerResult {
+  Grid grid;
+  std::vector<double> height;          // row-major, above the substrate [m]
+  std::vector<std::uint8_t> covered;   // 1 where a sphere covers the grid point
+  LayerMetrics metrics;
+  std::vector<std::string> warnings;   // sentences for the user; the host logs them
+};
+
+// The whole characterisation. `cell` is the plugin's `grid` parameter: 0 means mean diameter / 5.
+// Throws std::invalid_argument for unusable input (empty region, non-finite sphere data).
+LayerResult characterise_layer(const sm_layer_input_v1 &in, double cell);
+
+// {"metrics": {...}, "units": {...}, "warnings": [...]}; NaN metrics are written as null.
+std::string metrics_json(const LayerResult &result);
+
+// Pieces, usable on their own (tests, other tools).
+double mean_diameter(const SphereArrays &spheres);  // 0 when there are no spheres
+// Sphere volume inside the prism region[4] = x0, x1, y0, y1, periodic images included [m^3].
+double solid_volume_in_region(const SphereArrays &spheres, const double region[4], const PeriodicStrip &strip);
+// Centres (periodic images included) in [x0, x1) x [y0, y1).
+std::uint64_t centres_in_region(const SphereArrays &spheres, const double region[4], const PeriodicStrip &strip);
+// Number of grid points in the largest 4-connected set of uncovered points.
+std::size_t largest_bare_patch_points(const std::vector<std::uint8_t> &covered, std::uint32_t nx, std::uint32_t ny);
+
+}  // namespace spreadmap::layer

@@ -1,0 +1,65 @@
+// surrogate/gp: Gaussian-process regression as a plugin (mean and standard deviation per output).
+// The math lives in gp_model.{hpp,cpp}; this file declares the parameter schema and the C glue.
+// fit_info() reports per output the fitted length scales (input units), signal and noise standard
+// deviations (output units), the log marginal likelihood, and `loo_mean`: closed-form leave-one-out
+// predictions at the training rows (rows x outputs, output units) for cross-validated errors.
+#include <spreadmap/plugin.hpp>
+#include <spreadmap/surrogate.hpp>
+
+#include "../common/ops_glue.hpp"
+#include "gp_model.hpp"
+
+namespace sm = spreadmap;
+namespace ss = spreadmap::surrogate;
+
+namespace {
+
+struct Gp {
+  static constexpr sm_param_v1 params[] = {
+      sm::enumeration("kernel", "squared_exponential|matern52", "squared_exponential",
+                      "covariance k: squared exponential or Matern 5/2, one length scale per input (ARD)"),
+      sm::integer("restarts", 1, 100, 5, "starts of the likelihood maximisation (the best wins)"),
+      sm::integer("seed", 0, 4294967295.0, 1, "seed of the random starts"),
+      sm::number("noise_min", "-", 1e-14, 1, 1e-12,
+                 "lower bound of the noise variance n^2 as a share of each output's variance"),
+      sm::number("noise_max", "-", 1e-14, 10, 1, "upper bound of the noise variance, same scale"),
+      sm::integer("max_iterations", 1, 100000, 300, "L-BFGS iterations per start"),
+  };
+  static constexpr int has_std = 1;
+
+  ss::GpModel model;
+  std::string saved_text, info_text;
+
+  static Gp bind(const sm::Values &v) {
+    ss::GpConfig c;
+    c.kernel = ss::kernel_from_name(v.str("kernel"));
+    c.restarts = int(v.integer("restarts"));
+    c.seed = std::uint64_t(v.integer("seed"));
+    c.noise_min = v["noise_min"];
+    c.noise_max = v["noise_max"];
+    c.max_iterations = v.integer("max_iterations");
+    if (c.noise_min > c.noise_max)
+      throw sm::ParamError("noise_min = " + std::to_string(c.noise_min) + " is above noise_max = " +
+                           std::to_string(c.noise_max) + "; lower noise_min or raise noise_max");
+    return Gp{ss::GpModel(c), {}, {}};
+  }
+
+  void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y) { model.fit(x, y); }
+  int n_inputs() const {
+    if (!model.fitted()) throw std::logic_error("surrogate/gp: predict() before fit() or load()");
+    return model.n_inputs();
+  }
+  Eigen::MatrixXd predict(const Eigen::MatrixXd &x, Eigen::MatrixXd *std) const { return model.predict(x, std); }
+  nlohmann::json state() const {
+    if (!model.fitted()) throw std::logic_error("not fitted");
+    return model.to_json();
+  }
+  void load(const nlohmann::json &j) { model = ss::GpModel::from_json(j, model.config()); }
+  nlohmann::json info() const { return model.info(); }
+};
+
+}  // namespace
+
+SPREADMAP_PLUGIN("surrogate", Gp, "gp", "1.0.0",
+                 "Gaussian-process regression (ARD squared-exponential or Matern 5/2), mean and std",
+                 &ss::OpsGlue<Gp>::table)

@@ -1,0 +1,248 @@
+// Gaussian-process regression: kernels, marginal likelihood with its gradient, fit and prediction.
+#include "gp_model.hpp"
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "../common/lbfgs.hpp"
+#include "../common/random.hpp"
+
+namespace sm = spreadmap;
+using Eigen::MatrixXd;
+using Eigen::VectorXd;
+
+namespace spreadmap::surrogate {
+
+Kernel kernel_from_name(const std::string &n) {
+  if (n == "squared_exponential") return Kernel::squared_exponential;
+  if (n == "matern52") return Kernel::matern52;
+  throw std::invalid_argument("kernel '" + n + "' is not one of squared_exponential|matern52");
+}
+const char *name_of(Kernel k) { return k == Kernel::squared_exponential ? "squared_exponential" : "matern52"; }
+
+namespace {
+constexpr double sqrt5 = 2.23606797749979;
+constexpr double log_2pi = 1.8378770664093453;
+
+// Bounds of theta = log(s^2, l_1..d, n^2) on standardised data.
+void bounds(const GpConfig &c, int d, VectorXd &lo, VectorXd &hi) {
+  lo.resize(d + 2), hi.resize(d + 2);
+  lo[0] = std::log(1e-4), hi[0] = std::log(1e4);
+  lo.segment(1, d).setConstant(std::log(1e-2)), hi.segment(1, d).setConstant(std::log(1e3));
+  lo[d + 1] = std::log(c.noise_min), hi[d + 1] = std::log(c.noise_max);
+}
+
+// k as a function of the ARD-scaled squared distance r2, and dk/d(r_d^2 term) factor q such that
+// dk/dlog(l_d) = q * r_d^2 (r_d^2 = scaled squared distance along d).
+struct KernelValue {
+  double k, q;
+};
+KernelValue kernel_value(Kernel kind, double s2, double r2) {
+  if (kind == Kernel::squared_exponential) {
+    const double k = s2 * std::exp(-0.5 * r2);
+    return {k, k};
+  }
+  const double r = std::sqrt(r2), e = std::exp(-sqrt5 * r);
+  return {s2 * (1 + sqrt5 * r + 5.0 / 3.0 * r2) * e, s2 * 5.0 / 3.0 * (1 + sqrt5 * r) * e};
+}
+}  // namespace
+
+MatrixXd GpModel::kernel(const VectorXd &theta, const MatrixXd &a, const MatrixXd &b) const {
+  const int d = int(a.cols());
+  const double s2 = std::exp(theta[0]);
+  const Eigen::RowVectorXd inv_l = (-theta.segment(1, d).array()).exp().matrix().transpose();
+  const MatrixXd as = a.array().rowwise() * inv_l.array(), bs = b.array().rowwise() * inv_l.array();
+  MatrixXd k(a.rows(), b.rows());
+  for (Eigen::Index j = 0; j < b.rows(); ++j)
+    for (Eigen::Index i = 0; i < a.rows(); ++i) k(i, j) = kernel_value(config_.kernel, s2, (as.row(i) - bs.row(j)).squaredNorm()).k;
+  return k;
+}
+
+double GpModel::negative_log_likelihood(const VectorXd &theta, const MatrixXd &xs, const VectorXd &ys,
+                                        VectorXd *grad) const {
+  const Eigen::Index n = xs.rows();
+  const int d = int(xs.cols());
+  const double noise = std::exp(theta[d + 1]);
+  MatrixXd k = kernel(theta, xs, xs);
+  k.diagonal().array() += noise;
+  const Eigen::LLT<MatrixXd> llt(k);
+  if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
+  const VectorXd alpha = llt.solve(ys);
+  const MatrixXd l = llt.matrixL();
+  const double value = 0.5 * ys.dot(alpha) + l.diagonal().array().log().sum() + 0.5 * double(n) * log_2pi;
+  if (!grad) return value;
+
+  // d(-lml)/dtheta_j = 0.5 sum_ab W_ab dK_ab/dtheta_j, W = K^-1 - alpha alpha^T.
+  const MatrixXd w = llt.solve(MatrixXd::Identity(n, n)) - alpha * alpha.transpose();
+  grad->setZero(theta.size());
+  const double s2 = std::exp(theta[0]);
+  const Eigen::RowVectorXd inv_l = (-theta.segment(1, d).array()).exp().matrix().transpose();
+  const MatrixXd xl = xs.array().rowwise() * inv_l.array();
+  for (Eigen::Index j = 0; j < n; ++j)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const Eigen::RowVectorXd diff2 = (xl.row(i) - xl.row(j)).array().square().matrix();
+      const KernelValue kv = kernel_value(config_.kernel, s2, diff2.sum());
+      const double half_w = 0.5 * w(i, j);
+      (*grad)[0] += half_w * kv.k;                                     // dk/dlog s^2 = k
+      grad->segment(1, d) += half_w * kv.q * diff2.transpose();        // dk/dlog l_d = q r_d^2
+    }
+  (*grad)[d + 1] = 0.5 * noise * w.trace();                             // dK/dlog n^2 = n^2 I
+  return value;
+}
+
+void GpModel::prepare(Output &out, const VectorXd &ys) const {
+  const int d = int(xs_.cols());
+  MatrixXd k = kernel(out.theta, xs_, xs_);
+  k.diagonal().array() += std::exp(out.theta[d + 1]);
+  const Eigen::LLT<MatrixXd> llt(k);
+  if (llt.info() != Eigen::Success)
+    throw std::runtime_error("gp: the covariance matrix is not positive definite; raise noise_min");
+  out.chol = llt.matrixL();
+  out.alpha = llt.solve(ys);
+  const MatrixXd k_inv = llt.solve(MatrixXd::Identity(k.rows(), k.cols()));
+  out.loo = ys - (out.alpha.array() / k_inv.diagonal().array()).matrix();
+  out.lml = -(0.5 * ys.dot(out.alpha) + out.chol.diagonal().array().log().sum() + 0.5 * double(ys.size()) * log_2pi);
+}
+
+void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
+  if (x.rows() != y.rows()) throw std::invalid_argument("gp: inputs and outputs differ in row count");
+  if (x.rows() < 2 || x.cols() < 1 || y.cols() < 1) throw std::invalid_argument("gp: need >= 2 rows, >= 1 input and output");
+  if (!x.allFinite() || !y.allFinite()) throw std::invalid_argument("gp: training data contain NaN or infinity");
+  if (config_.restarts < 1) throw std::invalid_argument("gp: restarts must be >= 1");
+  x_train_ = x, y_train_ = y;
+  x_scale_ = Standardiser::fit(x), y_scale_ = Standardiser::fit(y);
+  xs_ = x_scale_.forward(x);
+  const MatrixXd ys_all = y_scale_.forward(y);
+  const int d = int(x.cols());
+  VectorXd lo, hi;
+  bounds(config_, d, lo, hi);
+  LbfgsOptions o;
+  o.max_iterations = config_.max_iterations;
+  o.gradient_tolerance = 1e-7;
+  o.relative_tolerance = 1e-12;
+  o.lower = lo, o.upper = hi;
+
+  outputs_.assign(std::size_t(y.cols()), {});
+  for (Eigen::Index c = 0; c < y.cols(); ++c) {
+    const VectorXd ys = ys_all.col(c);
+    Random rng(config_.seed + std::uint64_t(c) * 0x9e3779b97f4a7c15ULL);
+    const auto objective = [&](const VectorXd &t, VectorXd &g) { return negative_log_likelihood(t, xs_, ys, &g); };
+    double best = std::numeric_limits<double>::infinity();
+    Output &out = outputs_[std::size_t(c)];
+    for (int start = 0; start < config_.restarts; ++start) {
+      VectorXd t(d + 2);
+      if (start == 0) {
+        t.setZero();
+        t[d + 1] = std::log(std::max(config_.noise_min, std::min(config_.noise_max, 1e-4)));
+      } else {
+        t[0] = rng.uniform(std::log(0.1), std::log(10.0));
+        for (int k = 0; k < d; ++k) t[1 + k] = rng.uniform(std::log(0.1), std::log(10.0));
+        t[d + 1] = rng.uniform(lo[d + 1], std::max(lo[d + 1], std::min(hi[d + 1], std::log(0.1))));
+      }
+      const LbfgsResult r = lbfgs_minimise(objective, t, o);
+      if (std::isfinite(r.value) && r.value < best) best = r.value, out.theta = t, out.iterations = r.iterations;
+    }
+    if (!std::isfinite(best)) throw std::runtime_error("gp: no start gave a finite likelihood; raise noise_min");
+    prepare(out, ys);
+  }
+}
+
+MatrixXd GpModel::predict(const MatrixXd &x, MatrixXd *std) const {
+  if (!fitted()) throw std::logic_error("gp: predict() before fit() or load()");
+  if (x.cols() != xs_.cols())
+    throw std::invalid_argument("gp: expected " + std::to_string(xs_.cols()) + " inputs, got " + std::to_string(x.cols()));
+  const MatrixXd xq = x_scale_.forward(x);
+  MatrixXd mean(x.rows(), Eigen::Index(outputs_.size()));
+  if (std) std->resize(x.rows(), Eigen::Index(outputs_.size()));
+  for (std::size_t c = 0; c < outputs_.size(); ++c) {
+    const Output &out = outputs_[c];
+    const MatrixXd ks = kernel(out.theta, xq, xs_);  // query x train
+    mean.col(Eigen::Index(c)) = ks * out.alpha;
+    if (std) {
+      const MatrixXd v = out.chol.triangularView<Eigen::Lower>().solve(ks.transpose());
+      const VectorXd var = (std::exp(out.theta[0]) - v.colwise().squaredNorm().array()).max(0.0).matrix();
+      std->col(Eigen::Index(c)) = var.array().sqrt().matrix() * y_scale_.scale[Eigen::Index(c)];
+    }
+  }
+  return y_scale_.inverse(mean);
+}
+
+MatrixXd GpModel::loo_mean() const {
+  MatrixXd z(xs_.rows(), Eigen::Index(outputs_.size()));
+  for (std::size_t c = 0; c < outputs_.size(); ++c) z.col(Eigen::Index(c)) = outputs_[c].loo;
+  return y_scale_.inverse(z);
+}
+
+namespace {
+nlohmann::json matrix_json(const MatrixXd &m) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    std::vector<double> row(std::size_t(m.cols()));
+    for (Eigen::Index c = 0; c < m.cols(); ++c) row[std::size_t(c)] = m(r, c);
+    rows.push_back(row);
+  }
+  return rows;
+}
+MatrixXd matrix_from_json(const nlohmann::json &j, Eigen::Index cols, const char *what) {
+  MatrixXd m(Eigen::Index(j.size()), cols);
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    const auto row = j.at(std::size_t(r)).get<std::vector<double>>();
+    if (Eigen::Index(row.size()) != cols) throw std::invalid_argument(std::string("gp state: a row of ") + what + " has the wrong length");
+    for (Eigen::Index c = 0; c < cols; ++c) m(r, c) = row[std::size_t(c)];
+  }
+  return m;
+}
+}  // namespace
+
+nlohmann::json GpModel::to_json() const {
+  nlohmann::json thetas = nlohmann::json::array();
+  for (const auto &o : outputs_) thetas.push_back(std::vector<double>(o.theta.data(), o.theta.data() + o.theta.size()));
+  return {{"kernel", name_of(config_.kernel)}, {"x_scale", x_scale_.to_json()}, {"y_scale", y_scale_.to_json()},
+          {"x", matrix_json(x_train_)}, {"y", matrix_json(y_train_)}, {"theta", thetas}};
+}
+
+GpModel GpModel::from_json(const nlohmann::json &j, GpConfig config) {
+  config.kernel = kernel_from_name(j.at("kernel").get<std::string>());
+  GpModel m(config);
+  m.x_scale_ = Standardiser::from_json(j.at("x_scale"));
+  m.y_scale_ = Standardiser::from_json(j.at("y_scale"));
+  const Eigen::Index d = m.x_scale_.mean.size(), n_out = m.y_scale_.mean.size();
+  m.x_train_ = matrix_from_json(j.at("x"), d, "x");
+  m.y_train_ = matrix_from_json(j.at("y"), n_out, "y");
+  if (m.x_train_.rows() != m.y_train_.rows() || m.x_train_.rows() < 1) throw std::invalid_argument("gp state: x and y differ in rows");
+  m.xs_ = m.x_scale_.forward(m.x_train_);
+  const MatrixXd ys = m.y_scale_.forward(m.y_train_);
+  const auto &thetas = j.at("theta");
+  if (Eigen::Index(thetas.size()) != n_out) throw std::invalid_argument("gp state: one theta per output expected");
+  m.outputs_.assign(std::size_t(n_out), {});
+  for (Eigen::Index c = 0; c < n_out; ++c) {
+    const auto t = thetas.at(std::size_t(c)).get<std::vector<double>>();
+    if (Eigen::Index(t.size()) != d + 2) throw std::invalid_argument("gp state: theta has the wrong length");
+    m.outputs_[std::size_t(c)].theta = Eigen::Map<const VectorXd>(t.data(), Eigen::Index(t.size()));
+    m.prepare(m.outputs_[std::size_t(c)], ys.col(c));
+  }
+  return m;
+}
+
+nlohmann::json GpModel::info() const {
+  nlohmann::json outs = nlohmann::json::array();
+  const int d = int(xs_.cols());
+  for (std::size_t c = 0; c < outputs_.size(); ++c) {
+    const Output &o = outputs_[c];
+    const double ys = y_scale_.scale[Eigen::Index(c)];
+    std::vector<double> length(static_cast<std::size_t>(d));
+    for (int k = 0; k < d; ++k) length[std::size_t(k)] = std::exp(o.theta[1 + k]) * x_scale_.scale[k];
+    const double noise_share = std::exp(o.theta[d + 1]);
+    outs.push_back({{"signal_std", std::sqrt(std::exp(o.theta[0])) * ys},
+                    {"length_scales", length},
+                    {"noise_std", std::sqrt(noise_share) * ys},
+                    {"noise_at_lower_bound", o.theta[d + 1] <= std::log(config_.noise_min) + 1e-9},
+                    {"log_marginal_likelihood", o.lml},
+                    {"iterations", o.iterations}});
+  }
+  return {{"kernel", name_of(config_.kernel)}, {"restarts", config_.restarts}, {"outputs", outs},
+          {"loo_mean", fitted() ? matrix_json(loo_mean()) : nlohmann::json::array()}};
+}
+
+}  // namespace spreadmap::surrogate

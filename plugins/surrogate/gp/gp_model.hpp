@@ -1,0 +1,78 @@
+// Gaussian-process regression (Rasmussen & Williams 2006, ch. 2 and 5), one independent GP per
+// output, on standardised inputs and outputs.
+//
+// Kernels (ARD: one length scale l_d per input; r^2 = sum_d (x_d - x'_d)^2 / l_d^2):
+//   squared_exponential  k = s^2 exp(-r^2 / 2)
+//   matern52             k = s^2 (1 + sqrt5 r + 5 r^2 / 3) exp(-sqrt5 r)
+// plus a noise variance n^2 on the diagonal. Hyperparameters theta = log(s^2, l_1..l_d, n^2) maximise
+// the log marginal likelihood (analytic gradient, bounded L-BFGS) from `restarts` starts: the first
+// at s = l = 1, the others drawn from a seeded generator; the best wins.
+// Predictions: the posterior mean and the standard deviation of the latent function (without the
+// noise). Leave-one-out predictions come in closed form, mu_-i = y_i - alpha_i / [K^-1]_ii (R&W 5.12).
+#pragma once
+#include <Eigen/Dense>
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "../common/standardiser.hpp"
+
+namespace spreadmap::surrogate {
+
+enum class Kernel { squared_exponential, matern52 };
+Kernel kernel_from_name(const std::string &name);
+const char *name_of(Kernel k);
+
+struct GpConfig {
+  Kernel kernel = Kernel::squared_exponential;
+  int restarts = 5;              // optimiser starts (>= 1)
+  std::uint64_t seed = 1;
+  double noise_min = 1e-12;      // lower bound of n^2, as a share of each output's variance
+  double noise_max = 1.0;        // upper bound of n^2, same scale
+  long max_iterations = 300;     // L-BFGS iterations per start
+};
+
+class GpModel {
+ public:
+  explicit GpModel(GpConfig config = {}) : config_(config) {}
+
+  void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y);
+  // Posterior mean (rows x outputs); the latent standard deviation into *std when not null.
+  Eigen::MatrixXd predict(const Eigen::MatrixXd &x, Eigen::MatrixXd *std = nullptr) const;
+  // Closed-form leave-one-out predictions at the training rows (raw units).
+  Eigen::MatrixXd loo_mean() const;
+  bool fitted() const { return !outputs_.empty(); }
+  int n_inputs() const { return int(x_train_.cols()); }
+
+  // -log marginal likelihood of standardised data at log-hyperparameters theta, with gradient.
+  // Returns +inf when K is not positive definite. Public for the gradient test.
+  double negative_log_likelihood(const Eigen::VectorXd &theta, const Eigen::MatrixXd &xs, const Eigen::VectorXd &ys,
+                                 Eigen::VectorXd *grad) const;
+
+  nlohmann::json to_json() const;      // state: kernel, scaling, training data, theta per output
+  static GpModel from_json(const nlohmann::json &j, GpConfig config);
+  nlohmann::json info() const;         // hyperparameters in input/output units, lml, LOO predictions
+  const GpConfig &config() const { return config_; }
+
+ private:
+  struct Output {
+    Eigen::VectorXd theta;     // log(s^2), log(l_1..d), log(n^2)
+    double lml = 0;            // log marginal likelihood (standardised data)
+    Eigen::MatrixXd chol;      // lower Cholesky factor of K + n^2 I
+    Eigen::VectorXd alpha;     // (K + n^2 I)^-1 y
+    Eigen::VectorXd loo;       // leave-one-out means, standardised
+    long iterations = 0;
+  };
+  Eigen::MatrixXd kernel(const Eigen::VectorXd &theta, const Eigen::MatrixXd &a, const Eigen::MatrixXd &b) const;
+  void prepare(Output &out, const Eigen::VectorXd &ys) const;  // chol, alpha, lml, loo from theta
+
+  GpConfig config_;
+  Standardiser x_scale_, y_scale_;
+  Eigen::MatrixXd x_train_, y_train_;  // raw
+  Eigen::MatrixXd xs_;                 // standardised inputs
+  std::vector<Output> outputs_;
+};
+
+}  // namespace spreadmap::surrogate

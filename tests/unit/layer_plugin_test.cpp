@@ -1,0 +1,99 @@
+// metrics/layer through its C boundary, as the host sees it: descriptor, create, evaluate (JSON owned
+// by the instance), heightmap, errors as sm_error text, destroy.
+#include <dlfcn.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <string>
+
+#include <spreadmap/metric.hpp>
+
+namespace {
+
+class LayerPlugin : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    handle_ = dlopen(SPREADMAP_LAYER_PLUGIN_FILE, RTLD_NOW | RTLD_LOCAL);
+    ASSERT_NE(handle_, nullptr) << dlerror();
+    auto entry = reinterpret_cast<sm_plugin_entry_v1>(dlsym(handle_, "spreadmap_plugin_v1"));
+    ASSERT_NE(entry, nullptr);
+    plugin_ = entry();
+    ops_ = static_cast<const sm_metrics_ops_v1 *>(plugin_->ops);
+  }
+  void TearDown() override {
+    if (handle_) dlclose(handle_);
+  }
+  void *handle_ = nullptr;
+  const sm_plugin_v1 *plugin_ = nullptr;
+  const sm_metrics_ops_v1 *ops_ = nullptr;
+};
+
+TEST_F(LayerPlugin, DescribesItself) {
+  EXPECT_EQ(plugin_->abi, SPREADMAP_PLUGIN_ABI);
+  EXPECT_STREQ(plugin_->kind, "metrics");
+  EXPECT_STREQ(plugin_->name, "layer");
+  ASSERT_EQ(plugin_->n_params, 1u);
+  EXPECT_STREQ(plugin_->params[0].name, "grid");
+  EXPECT_STREQ(plugin_->params[0].unit, "m");
+  EXPECT_EQ(plugin_->params[0].def, 0.0);
+}
+
+TEST_F(LayerPlugin, EvaluatesASphereAndExposesItsHeightMap) {
+  sm_error err{};
+  void *self = plugin_->create(R"({"grid": 1e-5})", &err);
+  ASSERT_NE(self, nullptr) << err.text;
+  const double r = 125e-6, x = 0.5e-3, y = 0.5e-3, z = 20e-6 + r;
+  sm_layer_input_v1 in{};
+  in.n = 1;
+  in.x = &x;
+  in.y = &y;
+  in.z = &z;
+  in.r = &r;
+  in.region[1] = in.region[3] = 1e-3;
+  in.substrate_z = 20e-6;
+  in.speed = 0.1;
+  in.gap = std::nan("");
+  const char *text = ops_->evaluate(self, &in, &err);
+  ASSERT_NE(text, nullptr) << err.text;
+  const auto j = nlohmann::json::parse(text);
+  EXPECT_NEAR(j["metrics"]["solid_thickness"].get<double>(), 4 * std::numbers::pi / 3 * r * r * r / 1e-6, 1e-18);
+  EXPECT_TRUE(j["metrics"]["packing_fraction_gap"].is_null());
+  EXPECT_EQ(j["metrics"]["particles_in_region"].get<int>(), 1);
+  for (const char *name : {"mean_height", "rq", "vs", "solid_thickness", "packing_fraction", "packing_fraction_gap",
+                           "coverage", "largest_bare_patch", "particles_in_region", "cell"})
+    EXPECT_TRUE(j["units"].contains(name)) << name;
+
+  uint32_t nx = 0, ny = 0;
+  double x0 = 1, y0 = 1, cell = 0;
+  const double *h = ops_->heightmap(self, &nx, &ny, &x0, &y0, &cell);
+  ASSERT_NE(h, nullptr);
+  EXPECT_EQ(nx, 100u);
+  EXPECT_EQ(ny, 100u);
+  EXPECT_DOUBLE_EQ(cell, 1e-5);
+  EXPECT_NEAR(x0, 0.0, 1e-18);
+  // The sample nearest the centre sits (cell/2, cell/2) off it.
+  const double rho2 = 2 * 0.25 * cell * cell;
+  EXPECT_NEAR(h[50 * nx + 50], r + std::sqrt(r * r - rho2), 1e-15);
+  EXPECT_EQ(h[0], 0.0);
+  plugin_->destroy(self);
+}
+
+TEST_F(LayerPlugin, ReportsBadInputAsErrorText) {
+  sm_error err{};
+  void *self = plugin_->create(R"({"grid": 0})", &err);
+  ASSERT_NE(self, nullptr) << err.text;
+  uint32_t nx = 7, ny = 7;
+  EXPECT_EQ(ops_->heightmap(self, &nx, &ny, nullptr, nullptr, nullptr), nullptr);  // nothing evaluated yet
+  EXPECT_EQ(nx, 0u);
+  sm_layer_input_v1 in{};
+  in.region[0] = 1e-3;  // x0 > x1
+  EXPECT_EQ(ops_->evaluate(self, &in, &err), nullptr);
+  EXPECT_NE(err.code, 0);
+  EXPECT_NE(std::strstr(err.text, "region"), nullptr) << err.text;
+  plugin_->destroy(self);
+}
+
+}  // namespace

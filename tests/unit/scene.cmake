@@ -1,0 +1,6 @@
+# Scene building (host/scene): heap insertion, size distributions, coverage estimate.
+if(TARGET spreadmap_scene)
+  spreadmap_test(unit scene
+    SOURCES ${CMAKE_CURRENT_LIST_DIR}/scene_heap_test.cpp ${CMAKE_CURRENT_LIST_DIR}/scene_distribution_test.cpp
+    LIBS spreadmap_scene)
+endif()

@@ -1,0 +1,32 @@
+// Test helper: a spreader's bound Values from its schema defaults plus overrides, as the host
+// would pass them (every key present, SI).
+#pragma once
+#include <spreadmap/params.hpp>
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace spreadmap::test {
+
+template <std::size_t N> nlohmann::json schema_defaults(const sm_param_v1 (&params)[N]) {
+  nlohmann::json j = nlohmann::json::object();
+  for (const auto &p : params) {
+    switch (p.type) {
+      case SM_NUMBER: j[p.name] = p.def; break;
+      case SM_INTEGER: j[p.name] = static_cast<long>(p.def); break;
+      case SM_BOOLEAN: j[p.name] = p.def != 0; break;
+      case SM_ENUM:
+      case SM_STRING: j[p.name] = p.def_text ? p.def_text : ""; break;
+      case SM_TABLE: j[p.name] = nullptr; break;
+    }
+  }
+  return j;
+}
+
+template <class Geometry> Geometry bind_with(const nlohmann::json &overrides = nlohmann::json::object()) {
+  nlohmann::json j = schema_defaults(Geometry::params);
+  for (auto it = overrides.begin(); it != overrides.end(); ++it) j[it.key()] = it.value();
+  return Geometry::bind(Values(j));
+}
+
+}  // namespace spreadmap::test
