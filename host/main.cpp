@@ -11,6 +11,7 @@
 #include "core/schema.hpp"
 #include "core/stop.hpp"
 #include "core/suggest.hpp"
+#include "workflow/command_line.hpp"
 #include "workflow/commands.hpp"
 #include "workflow/stage.hpp"
 
@@ -35,29 +36,8 @@ commands:
   spreadmap --version
 )";
 
-struct Common {
-  bool quiet = false, verbose = false;
-  void add(po::options_description &d) {
-    d.add_options()("quiet,q", po::bool_switch(&quiet), "only warnings and errors")(
-        "verbose,v", po::bool_switch(&verbose), "debug messages");
-  }
-  void apply() const {
-    spdlog::set_level(quiet ? spdlog::level::warn : verbose ? spdlog::level::debug : spdlog::level::info);
-  }
-};
-
-// Parses argv[2..] for a sub-command; returns false when --help was printed.
-bool parse(int argc, char **argv, po::options_description &desc, po::positional_options_description &pos,
-           po::variables_map &vm, const std::string &synopsis) {
-  desc.add_options()("help,h", "this help");
-  po::store(po::command_line_parser(argc - 1, argv + 1).options(desc).positional(pos).run(), vm);
-  if (vm.count("help")) {
-    std::cout << "usage: spreadmap " << synopsis << "\n\n" << desc << "\n";
-    return false;
-  }
-  po::notify(vm);
-  return true;
-}
+using spreadmap::cli::Common;
+using spreadmap::cli::parse;
 
 int cmd_run(int argc, char **argv) {
   po::options_description d("run options");
@@ -185,9 +165,9 @@ int main(int argc, char **argv) {
       std::cout << usage;
       return 0;
     }
-    if (cmd == "run") return cmd_run(argc, argv);
-    if (cmd == "validate") return cmd_validate(argc, argv);
-    if (cmd == "plugins") return cmd_plugins(argc, argv);
+    if (cmd == "run") return cmd_run(argc - 1, argv + 1);
+    if (cmd == "validate") return cmd_validate(argc - 1, argv + 1);
+    if (cmd == "plugins") return cmd_plugins(argc - 1, argv + 1);
     if (auto sub = sm::find_command(cmd)) return sub(argc - 1, argv + 1);
     const std::vector<std::string> cmds = {"run", "validate", "plugins", "characterise", "train", "map", "query", "render"};
     const std::string near = sm::closest(cmd, cmds);

@@ -1,5 +1,20 @@
 #include "workflow/commands.hpp"
 
 namespace spreadmap {
-Command find_command(const std::string &) { return {}; }
+
+int cmd_characterise(int argc, char **argv);
+int cmd_train(int argc, char **argv);
+int cmd_map(int argc, char **argv);
+int cmd_query(int argc, char **argv);
+int cmd_render(int argc, char **argv);
+
+Command find_command(const std::string &name) {
+  if (name == "characterise" || name == "characterize") return cmd_characterise;
+  if (name == "train") return cmd_train;
+  if (name == "map") return cmd_map;
+  if (name == "query") return cmd_query;
+  if (name == "render") return cmd_render;
+  return {};
+}
+
 }  // namespace spreadmap

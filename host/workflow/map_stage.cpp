@@ -1,13 +1,95 @@
+// map: the process map of a trained model (by default the train stage's first) into map/.
+#include <spdlog/spdlog.h>
+
+#include "analysis/table.hpp"
 #include "core/error.hpp"
+#include "core/units.hpp"
+#include "workflow/mapping.hpp"
 #include "workflow/stage.hpp"
+#include "workflow/train_config.hpp"
 
 namespace spreadmap {
 namespace {
-class Pending : public Stage {
+
+class MapStage : public Stage {
  public:
-  void validate(const Workflow &, const StageEntry &, const nlohmann::json &, PluginRegistry &, Diagnostics &) override {}
-  void run(StageContext &) override { throw RunFailure("the map stage is not built yet"); }
+  void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &, PluginRegistry &registry,
+                Diagnostics &diag) override {
+    const std::string file = wf.file.string();
+    const YAML::Node &cfg = entry.config;
+    for (const auto &kv : cfg) {
+      const std::string k = kv.first.as<std::string>();
+      if (k != "model" && k != "grid" && k != "rq_max" && k != "render")
+        diag.error(Location::of(file, kv.first), "map." + k, "unknown key", "known: model, grid, rq_max, render");
+    }
+    for (const auto &s : wf.stages)
+      if (s.kind == "train" && model_.empty()) {
+        Diagnostics ignore;  // the train stage reports its own problems
+        const auto t = read_train_config(wf, s, registry, ignore);
+        if (!t.models.empty()) model_ = t.models.front().first;
+      }
+    if (cfg["model"]) model_ = cfg["model"].as<std::string>();
+    if (model_.empty()) model_ = "bpnn";
+    grid_ = cfg["grid"] ? cfg["grid"].as<std::string>() : "";
+    if (!grid_.empty()) {
+      try {
+        parse_grid_points(grid_, 2);
+      } catch (const std::exception &e) {
+        diag.error(Location::of(file, cfg["grid"]), "map.grid", e.what());
+      }
+    }
+    if (const YAML::Node r = cfg["rq_max"]) {
+      std::vector<YAML::Node> items;
+      if (r.IsSequence())
+        for (const auto &v : r) items.push_back(v);
+      else
+        items.push_back(r);
+      for (const auto &v : items) {
+        try {
+          rq_max_.push_back(parse_in(v.as<std::string>(), "m"));
+        } catch (const std::exception &e) {
+          diag.error(Location::of(file, v), "map.rq_max", e.what(), "a roughness with its unit, e.g. 110 um");
+        }
+      }
+    }
+    render_ = cfg["render"] ? cfg["render"].as<bool>(true) : true;
+  }
+
+  void run(StageContext &ctx) override {
+    const fs::path model_json = ctx.run.train_dir(model_) / "model.json";
+    if (!fs::exists(model_json))
+      throw InputError("error: map: " + model_json.string() + " does not exist; run the train stage with model " + model_);
+    const auto file = analysis::load_model_json(model_json.string());
+    MapRequest rq;
+    if (!grid_.empty()) rq.points = parse_grid_points(grid_, file.inputs.size());
+    rq.rq_max = rq_max_;
+    const auto map = make_process_map(ctx.registry, file, rq);
+    std::unique_ptr<analysis::Table> data;
+    const fs::path data_csv = ctx.run.train_dir(model_) / "data.csv";
+    if (fs::exists(data_csv)) data = std::make_unique<analysis::Table>(analysis::Table::read_csv(data_csv.string()));
+    write_process_map(map, file, ctx.run.map_dir(), data.get(), render_);
+    for (const auto &o : map.optima) {
+      if (!o.found) {
+        spdlog::warn("map: no setting on the grid reaches R_q <= {}", display(o.rq_max, "m"));
+        continue;
+      }
+      std::string at;
+      for (std::size_t i = 0; i < file.inputs.size(); ++i)
+        at += (i ? ", " : "") + file.inputs[i].name + " = " + display(o.x(Eigen::Index(i)), file.inputs[i].unit);
+      spdlog::info("map: for R_q <= {}: {} gives V_s = {}, R_q = {}", display(o.rq_max, "m"), at, display(o.vs, "m^2/s"),
+                   display(o.rq, "m"));
+    }
+    spdlog::info("map: {} grid points in {}", map.grid.x.rows(), (ctx.run.map_dir() / "map.csv").string());
+  }
+
+ private:
+  std::string model_, grid_;
+  std::vector<double> rq_max_;
+  bool render_ = true;
 };
+
 }  // namespace
-std::unique_ptr<Stage> make_map_stage() { return std::make_unique<Pending>(); }
+
+std::unique_ptr<Stage> make_map_stage() { return std::make_unique<MapStage>(); }
+
 }  // namespace spreadmap

@@ -11,6 +11,8 @@
 #include "core/stop.hpp"
 #include "workflow/case_runner.hpp"
 #include "workflow/design.hpp"
+#include "workflow/figures.hpp"
+#include "workflow/layer_eval.hpp"
 #include "workflow/progress.hpp"
 #include "workflow/stage.hpp"
 
@@ -24,6 +26,7 @@ class SimulateStage : public Stage {
     const std::string file = wf.file.string();
     for (const auto &kv : entry.config) {
       const std::string key = kv.first.as<std::string>();
+      if (key == "render") render_ = kv.second.as<bool>(true);
       if (key != "design" && key != "render")
         diag.error(Location::of(file, kv.first), "simulate." + key, "unknown key", "known: design, render");
     }
@@ -114,6 +117,7 @@ class SimulateStage : public Stage {
               }
           });
           progress.done_item();
+          if (render_) snapshot(req);
           spdlog::info("{} done: {} steps, {:.1f} s, {:.3g} particle-steps/s, {} removed", req.id,
                        result["steps"].get<double>(), wall, result["particle_steps_per_second"].get<double>(),
                        result["removed"].get<double>());
@@ -134,7 +138,16 @@ class SimulateStage : public Stage {
   }
 
  private:
+  // The end state as a picture: cases/cNNN/snapshot.png.
+  static void snapshot(const CaseRequest &req) {
+    try {
+      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, req.dir / "snapshot.png", req.id + ": " + req.inputs.dump());
+    } catch (const std::exception &e) {
+      spdlog::warn("{}: snapshot not drawn: {}", req.id, e.what());
+    }
+  }
   Design design_;
+  bool render_ = true;
 };
 
 }  // namespace

@@ -1,4 +1,5 @@
 // Gaussian-process regression: kernels, marginal likelihood with its gradient, fit and prediction.
+#include <algorithm>
 #include "gp_model.hpp"
 
 #include <cmath>
@@ -117,6 +118,17 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
   const int d = int(x.cols());
   VectorXd lo, hi;
   bounds(config_, d, lo, hi);
+  // No length scale below half the spacing of the design along that input: features finer than the
+  // sampling cannot be resolved, and on a small lattice of noisy DEM results the likelihood
+  // otherwise prefers a near-zero length with near-zero noise (spikes at every training point).
+  for (int k = 0; k < d; ++k) {
+    std::vector<double> v(xs_.col(k).data(), xs_.col(k).data() + xs_.rows());
+    std::sort(v.begin(), v.end());
+    double spacing = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 1; i < v.size(); ++i)
+      if (v[i] - v[i - 1] > 1e-9) spacing = std::min(spacing, v[i] - v[i - 1]);
+    if (std::isfinite(spacing)) lo[1 + k] = std::min(hi[1 + k], std::max(lo[1 + k], std::log(0.5 * spacing)));
+  }
   LbfgsOptions o;
   o.max_iterations = config_.max_iterations;
   o.gradient_tolerance = 1e-7;
@@ -140,6 +152,7 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
         for (int k = 0; k < d; ++k) t[1 + k] = rng.uniform(std::log(0.1), std::log(10.0));
         t[d + 1] = rng.uniform(lo[d + 1], std::max(lo[d + 1], std::min(hi[d + 1], std::log(0.1))));
       }
+      t = t.cwiseMax(lo).cwiseMin(hi);
       const LbfgsResult r = lbfgs_minimise(objective, t, o);
       if (std::isfinite(r.value) && r.value < best) best = r.value, out.theta = t, out.iterations = r.iterations;
     }

@@ -1,0 +1,36 @@
+// The figures each stage leaves in the run directory (snapshot, height map, parity, surfaces, process
+// map). Figures are a view of results, never a result: when this build has no VTK, or rendering
+// fails, a warning says so once and the stage goes on.
+#pragma once
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "analysis/grid.hpp"
+#include "analysis/optimum.hpp"
+#include "analysis/report.hpp"
+#include "engine/particle_set.hpp"
+#include "workflow/layer_eval.hpp"
+
+namespace spreadmap::figures {
+
+namespace fs = std::filesystem;
+
+bool available();
+
+// The particles at the end of the case with the spreader where it stopped; `scene` is the case's
+// resolved scene (for the domain and the spreader's pose).
+void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const fs::path &png, const std::string &title);
+void heightmap(const LayerResult &layer, const fs::path &png, const std::string &title);
+// Predicted against simulated V_s and R_q, training and test rows.
+void parity(const analysis::Report &report, const std::vector<std::string> &outputs, const fs::path &png);
+// A response surface over (U, omega) for each output, with the simulated cases as points.
+// u_col / omega_col: the grid's input columns; points: rows of (U, omega, outputs...) from training.
+void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &units, const analysis::Table &data,
+              const fs::path &dir);
+// The process map: V_s and R_q contours over (U, omega), the frontier and the optimum.
+void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
+                 const std::vector<analysis::Optimum> &optima, const fs::path &png);
+
+}  // namespace spreadmap::figures

@@ -1,0 +1,23 @@
+#!/bin/sh
+# The whole test suite from a fresh clone: installs what is missing, builds the release tree and
+# runs every test, then builds the AddressSanitizer+UBSan tree and runs the unit, extremes and
+# workflow tests under it. Tests labelled gpu (need a GPU) and manual (run by hand) are left out.
+set -eu
+cd "$(dirname "$0")/.."
+jobs="${SPREADMAP_BUILD_JOBS:-2}"
+
+scripts/setup.sh --tests
+
+echo "== release build"
+cmake --preset release
+cmake --build build -j"$jobs"
+echo "== release tests (leaving out the labels gpu and manual: they need a GPU or a person)"
+ctest --test-dir build -j"$jobs" --output-on-failure -LE "gpu|manual"
+
+echo "== AddressSanitizer + UBSan build"
+cmake --preset asan
+cmake --build build-asan -j"$jobs"
+echo "== sanitizer tests: unit, extremes, workflow (leaving out gpu and manual)"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-asan -j"$jobs" --output-on-failure -L "unit|extremes|workflow" -LE "gpu|manual"
+echo "== all tests passed"
