@@ -5,8 +5,10 @@
 
 #include <boost/program_options.hpp>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
+#include "cluster/cluster_run.hpp"
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/stop.hpp"
@@ -39,24 +41,76 @@ commands:
 using spreadmap::cli::Common;
 using spreadmap::cli::parse;
 
+// The options that spread the cases over a cluster must make sense together before anything runs.
+void check_cluster_options(const sm::cluster::ClusterOptions &cl, const sm::RunOptions &opt,
+                           const po::variables_map &vm) {
+  const auto names = sm::cluster::executor_names();
+  if (std::find(names.begin(), names.end(), cl.executor) == names.end()) {
+    const std::string near = sm::closest(cl.executor, names);
+    throw sm::InputError("error: --executor " + cl.executor + ": not an executor (" + sm::join(names) + ")" +
+                         (near.empty() ? "" : "; did you mean '" + near + "'?"));
+  }
+  if (cl.dry_run && cl.executor != "slurm")
+    throw sm::InputError("error: --dry-run writes the Slurm scripts without submitting them: use it with --executor slurm");
+  if (vm.count("threads-per-rank") && cl.threads_per_rank < 1)
+    throw sm::InputError("error: --threads-per-rank must be at least 1");
+  if (vm.count("threads-per-rank") && cl.executor == "local" && !opt.only_case)
+    throw sm::InputError("error: --threads-per-rank is for --executor mpi or slurm (or --case); a local run takes "
+                         "scene.threads and --jobs");
+  if (opt.jobs != 1 && cl.executor != "local")
+    throw sm::InputError("error: --jobs is for the local executor; with --executor " + cl.executor +
+                         " each rank or array task runs one case at a time (see --threads-per-rank)");
+  if (opt.only_case && cl.executor != "local")
+    throw sm::InputError("error: --case runs one case here; it does not go with --executor " + cl.executor);
+  if (opt.only_case && opt.jobs != 1) throw sm::InputError("error: --case runs one case: --jobs does not apply");
+  // mpirun -n N without --executor mpi: N copies of the whole run would fill one folder at once
+  for (const char *size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char *n = std::getenv(size); n && std::atoi(n) > 1 && cl.executor != "mpi")
+      throw sm::InputError(std::string("error: this is one of ") + n + " MPI ranks, but --executor is " + cl.executor +
+                           ": every rank would run every case. Add --executor mpi");
+  if (opt.only_case)
+    for (const auto &s : opt.only)
+      if (s != "simulate")
+        throw sm::InputError("error: --case runs one case of the simulate stage; --only " + s + " does not go with it");
+}
+
 int cmd_run(int argc, char **argv) {
   po::options_description d("run options");
   std::string file, only, out;
   sm::RunOptions opt;
+  sm::cluster::ClusterOptions cluster;
+  std::size_t one_case = 0;
   Common c;
   d.add_options()("workflow", po::value(&file)->required(), "workflow file")(
       "only", po::value(&only), "run only these stages, comma-separated (simulate,characterise,train,map)")(
       "force", po::bool_switch(&opt.force), "recompute finished cases and stages")(
       "out", po::value(&out), "run directory (default runs/<workflow name>)")(
-      "jobs,j", po::value(&opt.jobs)->default_value(1), "cases run at once");
+      "jobs,j", po::value(&opt.jobs)->default_value(1), "cases run at once")(
+      "executor", po::value(&cluster.executor)->default_value("local"),
+      "where the simulate stage's cases run: local (here, --jobs at once) | mpi (under mpirun: rank 0 hands the "
+      "cases to the other ranks) | slurm (a job array per case and a job for the later stages)")(
+      "threads-per-rank", po::value(&cluster.threads_per_rank),
+      "OpenMP threads of each case on an MPI rank or Slurm task (default: scene.threads, else the rank's share of "
+      "its node's CPUs; Slurm: 1)")(
+      "dry-run", po::bool_switch(&cluster.dry_run), "with --executor slurm: write the scripts and print the path of "
+      "submit.sh, submit nothing")(
+      "case", po::value(&one_case), "run only case N of the design (case 7 is c007), leaving manifest.json alone: what one "
+      "Slurm array task runs; implies --only simulate");
   c.add(d);
   po::positional_options_description p;
   p.add("workflow", 1);
   po::variables_map vm;
-  if (!parse(argc, argv, d, p, vm, "run WORKFLOW [--only STAGE[,STAGE...]] [--force] [--out DIR] [--jobs N]")) return 0;
+  if (!parse(argc, argv, d, p, vm,
+             "run WORKFLOW [--only STAGE[,STAGE...]] [--force] [--out DIR] [--jobs N]\n"
+             "                     [--executor local|mpi|slurm] [--threads-per-rank N] [--dry-run] [--case N]"))
+    return 0;
   c.apply();
   opt.quiet = c.quiet;
   if (opt.jobs < 1) throw sm::InputError("error: --jobs must be at least 1");
+  if (vm.count("case")) {
+    opt.only_case = one_case;
+    opt.case_threads = cluster.threads_per_rank;
+  }
   std::size_t pos = 0;
   while (!only.empty() && pos <= only.size()) {
     const std::size_t comma = only.find(',', pos);
@@ -66,7 +120,10 @@ int cmd_run(int argc, char **argv) {
     pos = comma + 1;
   }
   opt.out = out;
-  return sm::run_workflow(file, opt, sm::PluginRegistry::global());
+  check_cluster_options(cluster, opt, vm);
+  if (opt.only_case) opt.only = {"simulate"};
+  if (cluster.executor == "local") return sm::run_workflow(file, opt, sm::PluginRegistry::global());
+  return sm::cluster::run_distributed(file, opt, cluster, sm::PluginRegistry::global());
 }
 
 int cmd_validate(int argc, char **argv) {
@@ -119,7 +176,15 @@ int cmd_plugins(int argc, char **argv) {
     for (const auto &n : reg.names(k)) {
       if (!name.empty() && n != name) continue;
       found = true;
-      const auto &pl = reg.get(k, n);
+      const sm::LoadedPlugin *loaded = nullptr;
+      try {
+        loaded = &reg.get(k, n);
+      } catch (const sm::PluginError &e) {
+        if (!name.empty()) throw;
+        spdlog::warn("{} (skipped; the other plugins are listed)", e.what());  // one broken library hides nothing else
+        continue;
+      }
+      const auto &pl = *loaded;
       if (format == "json") {
         auto j = sm::schema_json(*pl.descriptor);
         j["file"] = pl.file.string();

@@ -25,6 +25,7 @@ function(spreadmap_add_plugin)
   if(COMMAND spreadmap_plugin_cuda)
     spreadmap_plugin_cuda(${t} ${P_KIND} "${P_SOURCES}")
   endif()
-  include(GNUInstallDirs)
-  install(TARGETS ${t} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}/spreadmap/plugins/${P_KIND})
+  # Literally lib/, not CMAKE_INSTALL_LIBDIR (lib/x86_64-linux-gnu under /usr on Debian): the binary
+  # looks in <its folder>/../lib/spreadmap/plugins.
+  install(TARGETS ${t} LIBRARY DESTINATION lib/spreadmap/plugins/${P_KIND})
 endfunction()

@@ -17,7 +17,9 @@ void write_atomic_with(const fs::path &path, const std::function<void(const fs::
 std::string read_text(const fs::path &path);  // throws InputError naming the file
 // A temporary name beside `path`, unique per process and call.
 fs::path temporary_beside(const fs::path &path);
-// FNV-1a 64-bit hash as 16 hex digits: stable across machines (input hashes in the manifest).
+// 64-bit FNV-1a-style hash as 16 hex digits: stable across machines and versions (input hashes in the
+// manifest, heap file names). Its offset basis is 1469598103934665603, not FNV's 14695981039346656037:
+// keep it, since changing it would make every existing run directory recompute its cases.
 std::string stable_hash(const std::string &text);
 
 }  // namespace spreadmap

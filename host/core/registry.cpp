@@ -115,10 +115,17 @@ const LoadedPlugin &PluginRegistry::get(const std::string &kind, const std::stri
 PluginInstance::PluginInstance(const LoadedPlugin &plugin, const std::string &params_json, const std::string &where)
     : plugin_(&plugin) {
   sm_error err{0, {0}};
-  self_ = plugin.descriptor->create(params_json.c_str(), &err);
-  if (!self_)
-    throw PluginError("error: " + (where.empty() ? std::string() : where + ": ") + plugin.id() + ": " +
-                      (err.code ? err.text : "create() failed without saying why"));
+  const std::string prefix = "error: " + (where.empty() ? std::string() : where + ": ") + plugin.id() + ": ";
+  // The ABI says create() reports through err, but a hand-written factory may still throw: the
+  // exception must become the same clear error, not terminate the host.
+  try {
+    self_ = plugin.descriptor->create(params_json.c_str(), &err);
+  } catch (const std::exception &e) {
+    throw PluginError(prefix + "its factory threw instead of reporting an error: " + e.what());
+  } catch (...) {
+    throw PluginError(prefix + "its factory threw an unknown exception");
+  }
+  if (!self_) throw PluginError(prefix + (err.code ? err.text : "create() failed without saying why"));
 }
 
 PluginInstance &PluginInstance::operator=(PluginInstance &&o) noexcept {

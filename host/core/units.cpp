@@ -12,22 +12,23 @@ namespace {
 
 constexpr double pi = 3.14159265358979323846;
 
+// {factor, pow10, dimension}: decimal scales go to pow10 (see Unit).
 const std::map<std::string, Unit> &base_units() {
   static const std::map<std::string, Unit> units = {
-      {"m", {1, {{1, 0, 0}}}},        {"g", {1e-3, {{0, 1, 0}}}},      {"s", {1, {{0, 0, 1}}}},
-      {"min", {60, {{0, 0, 1}}}},     {"h", {3600, {{0, 0, 1}}}},      {"rad", {1, {}}},
-      {"deg", {pi / 180, {}}},        {"rpm", {2 * pi / 60, {{0, 0, -1}}}},
-      {"N", {1, {{1, 1, -2}}}},       {"Pa", {1, {{-1, 1, -2}}}},      {"J", {1, {{2, 1, -2}}}},
-      {"Hz", {1, {{0, 0, -1}}}},      {"%", {0.01, {}}},               {"-", {1, {}}},
-      {"1", {1, {}}},                 {"t", {1000, {{0, 1, 0}}}},
+      {"m", {1, 0, {{1, 0, 0}}}},        {"g", {1, -3, {{0, 1, 0}}}},     {"s", {1, 0, {{0, 0, 1}}}},
+      {"min", {60, 0, {{0, 0, 1}}}},     {"h", {3600, 0, {{0, 0, 1}}}},   {"rad", {1, 0, {}}},
+      {"deg", {pi / 180, 0, {}}},        {"rpm", {2 * pi / 60, 0, {{0, 0, -1}}}},
+      {"N", {1, 0, {{1, 1, -2}}}},       {"Pa", {1, 0, {{-1, 1, -2}}}},   {"J", {1, 0, {{2, 1, -2}}}},
+      {"Hz", {1, 0, {{0, 0, -1}}}},      {"%", {1, -2, {}}},              {"-", {1, 0, {}}},
+      {"1", {1, 0, {}}},                 {"t", {1, 3, {{0, 1, 0}}}},
   };
   return units;
 }
 
-const std::map<std::string, double> &prefixes() {
-  static const std::map<std::string, double> p = {
-      {"n", 1e-9}, {"u", 1e-6}, {"\xC2\xB5", 1e-6}, {"\xCE\xBC", 1e-6}, {"m", 1e-3}, {"c", 1e-2},
-      {"k", 1e3},  {"M", 1e6},  {"G", 1e9}};
+const std::map<std::string, int> &prefixes() {
+  static const std::map<std::string, int> p = {
+      {"n", -9}, {"u", -6}, {"\xC2\xB5", -6}, {"\xCE\xBC", -6}, {"m", -3}, {"c", -2},
+      {"k", 3},  {"M", 6},  {"G", 9}};
   return p;
 }
 
@@ -35,11 +36,11 @@ const std::map<std::string, double> &prefixes() {
 std::optional<Unit> parse_symbol(const std::string &sym) {
   const auto &base = base_units();
   if (auto it = base.find(sym); it != base.end()) return it->second;
-  for (const auto &[prefix, factor] : prefixes()) {
+  for (const auto &[prefix, pow10] : prefixes()) {
     if (sym.size() > prefix.size() && sym.compare(0, prefix.size(), prefix) == 0) {
       auto it = base.find(sym.substr(prefix.size()));
       if (it != base.end() && it->first != "%" && it->first != "-" && it->first != "1")
-        return Unit{factor * it->second.factor, it->second.dim};
+        return Unit{it->second.factor, pow10 + it->second.pow10, it->second.dim};
     }
   }
   return std::nullopt;
@@ -59,6 +60,21 @@ std::string Dimension::str() const {
   }
   if (num.empty() && den.empty()) return "1";
   return (num.empty() ? "1" : num) + (den.empty() ? "" : "/" + den);
+}
+
+// 10^k by repeated multiplication: exact up to k = 22, so the decimal step of to_si() is a single
+// correctly rounded multiplication or division.
+static double power_of_ten(int k) {
+  double p = 1;
+  for (int i = 0; i < k; ++i) p *= 10;
+  return p;
+}
+
+double Unit::to_si(double value) const {
+  double scaled = value;
+  if (pow10 > 0) scaled = value * power_of_ten(pow10);
+  else if (pow10 < 0) scaled = value / power_of_ten(-pow10);
+  return factor == 1.0 ? scaled : scaled * factor;
 }
 
 std::optional<Unit> parse_unit(const std::string &text, std::string *why) {
@@ -101,12 +117,14 @@ std::optional<Unit> parse_unit(const std::string &text, std::string *why) {
       if (!u) return fail("unknown unit '" + sym + "'");
       power = std::stoi(sym.substr(k));
       result.factor *= std::pow(u->factor, sign * power);
+      result.pow10 += sign * power * u->pow10;
       for (int d = 0; d < 3; ++d) result.dim.e[d] += sign * power * u->dim.e[d];
       any = true; i = j; continue;
     }
     auto u = parse_symbol(sym);
     if (!u) return fail("unknown unit '" + sym + "'");
     result.factor *= std::pow(u->factor, sign * power);
+    result.pow10 += sign * power * u->pow10;
     for (int d = 0; d < 3; ++d) result.dim.e[d] += sign * power * u->dim.e[d];
     any = true;
     i = j;
@@ -144,7 +162,7 @@ Quantity parse_quantity(const std::string &text) {
   if (!u) throw std::invalid_argument("'" + s + "': " + why + " (known: m, g, s, min, h, rad, deg, rpm, N, Pa, J, Hz, % with prefixes n u m c k M G)");
   q.has_unit = true;
   q.unit = *u;
-  q.value = v * u->factor;
+  q.value = u->to_si(v);
   if (!std::isfinite(q.value)) throw std::invalid_argument("'" + s + "' is not a finite number in SI");
   return q;
 }
@@ -157,7 +175,7 @@ double parse_in(const std::string &text, const std::string &si_unit) {
   if (!(q.unit.dim == target->dim))
     throw std::invalid_argument("'" + text + "' has the dimension of " + q.unit.dim.str() + ", expected " +
                                 target->dim.str() + " (a value in " + si_unit + ")");
-  return q.value / target->factor;
+  return q.value / target->to_si(1.0);
 }
 
 }  // namespace spreadmap

@@ -14,9 +14,13 @@ struct Dimension {
   std::string str() const;  // "m/s", "kg/m^3", "1" for dimensionless
 };
 
+// To SI: value * 10^pow10 * factor. Decimal prefixes and g, t, % live in pow10 so that "2.5 um" is
+// computed as 2.5 / 1e6, one correctly rounded division, and equals the double of "2.5e-6" exactly.
 struct Unit {
-  double factor = 1.0;  // to SI
+  double factor = 1.0;  // the non-decimal part (deg, rpm, min, h)
+  int pow10 = 0;
   Dimension dim;
+  double to_si(double value) const;
 };
 
 // Parses a unit expression ("mm/s", "kg/m^3", "1/s", "-"); nullopt when unknown. `why` says which

@@ -120,6 +120,8 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   if (list_.start.size() != n + 1 || list_.start.back() != list_.nbr.size() ||
       list_.hist.size() != list_.nbr.size() * pair_law_.ops->history)
     r.fail("an inconsistent neighbour list");
+  list_.restore_mirror(settings_.pairs_once, pair_law_.ops->history);
+  forces_zeroed_ = false;
   for (auto &pl : planes_) {
     pl.wall.point = r.value<std::array<double, 3>>();
     pl.wall.velocity = r.value<std::array<double, 3>>();

@@ -27,7 +27,7 @@ int axis_neighbours(int c, int n, bool periodic, int out[3]) {
 template <class Real>
 void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid,
                                 const std::vector<std::uint32_t> &cell_start, const std::vector<std::uint32_t> &cell,
-                                const Domain &domain, Real skin, unsigned history) {
+                                const Domain &domain, Real skin, unsigned history, bool with_mirror) {
   start.swap(old_start_);
   nbr.swap(old_nbr_);
   hist.swap(old_hist_);
@@ -76,14 +76,14 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
         // Ascending cell order, so the neighbours of i come out sorted by index.
         std::sort(ranges, ranges + n_ranges, [](const Range &a, const Range &b) { return a.begin < b.begin; });
       }
-      const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i] + skin;
+      const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i];
       std::uint32_t count = 0;
       for (int q = 0; q < n_ranges; ++q) {
         for (std::uint32_t j = ranges[q].begin; j < ranges[q].end; ++j) {
           const Real dx = wrap(xi - p.x[j], len[0], per[0]);
           const Real dy = wrap(yi - p.y[j], len[1], per[1]);
           const Real dz = wrap(zi - p.z[j], len[2], per[2]);
-          const Real reach = ri + p.r[j];
+          const Real reach = (ri + p.r[j]) + skin;  // symmetric in i and j: the list is, too
           if (dx * dx + dy * dy + dz * dz < reach * reach && j != i) {
             buf.push_back(j);
             ++count;
@@ -102,6 +102,8 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
     std::copy(buf.begin(), buf.end(), nbr.begin() + start[lo]);
   }
 
+  has_mirror_ = false;
+  if (with_mirror && history == 0) find_mirrors();
   if (history == 0 || old_nbr_.empty()) return;
   // Carry history: the same (i, j) pair of particles in the previous list, found by old indices.
   const std::size_t old_n = old_start_.empty() ? 0 : old_start_.size() - 1;
@@ -121,6 +123,34 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
       }
     }
   }
+}
+
+// mirror[k] for every entry: the lower entries (j < i) search i among j's neighbours (listed by
+// index) and set both directions, so each entry is written once.
+template <class Real> void NeighbourList<Real>::find_mirrors() {
+  const std::size_t n = start.size() - 1, entries = nbr.size();
+  mirror.resize(entries);
+  slot.resize(entries);
+  scratch.resize(6 * (2 * entries + 1));
+  std::fill_n(scratch.begin(), 6, Real(0));
+  int missing = 0;
+#pragma omp parallel for schedule(static) reduction(+ : missing)
+  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+    const auto i = static_cast<std::uint32_t>(ii);
+    for (std::uint32_t k = start[i]; k < start[i + 1] && nbr[k] < i; ++k) {
+      const std::uint32_t j = nbr[k];
+      const auto first = nbr.begin() + start[j], last = nbr.begin() + start[j + 1];
+      const auto found = std::lower_bound(first, last, i);
+      if (found == last || *found != i) {
+        ++missing;
+        continue;
+      }
+      const auto m = static_cast<std::uint32_t>(found - nbr.begin());
+      mirror[k] = m;
+      mirror[m] = k;
+    }
+  }
+  has_mirror_ = missing == 0;  // a list that is not symmetric is evaluated entry by entry
 }
 
 template class NeighbourList<double>;

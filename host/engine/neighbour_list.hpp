@@ -1,5 +1,5 @@
 // Full (both-direction) Verlet list in CSR form over cell-sorted particles, with contact history
-// carried from the previous list by particle identity.
+// carried from the previous list by particle identity, and optionally each entry's mirror.
 //
 // Determinism: the neighbours of i are listed in a fixed order (neighbour cells in a fixed order,
 // particles within a cell by index), a function of the state only; threads build contiguous
@@ -20,18 +20,36 @@ template <class Real> class NeighbourList {
   // cell[i] is the cell of particle i. p.list_index[i] is i's index in the previous list (no_index
   // for particles it did not know); history values of pairs present in both lists are copied, new
   // pairs start at zero. Lists j when |x_i - x_j| < r_i + r_j + skin (minimum image).
+  // with_mirror: also find each entry's mirror (the entry (j, i) of (i, j)) and size the scratch of
+  // the CPU loop that evaluates each pair once (laws without history, see spreadmap/pair_once.hpp).
   void build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid, const std::vector<std::uint32_t> &cell_start,
-             const std::vector<std::uint32_t> &cell, const Domain &domain, Real skin, unsigned history);
+             const std::vector<std::uint32_t> &cell, const Domain &domain, Real skin, unsigned history,
+             bool with_mirror = false);
 
-  PairList<Real> view() { return {start.data(), nbr.data(), hist.data()}; }
+  PairList<Real> view() {
+    const bool once = has_mirror_ && !nbr.empty();
+    return {start.data(), nbr.data(), hist.data(), once ? mirror.data() : nullptr, once ? scratch.data() : nullptr,
+            once ? slot.data() : nullptr};
+  }
   std::size_t entries() const { return nbr.size(); }
-  void clear() { start.clear(); nbr.clear(); hist.clear(); }
+  // After start/nbr were replaced (a checkpoint): finds the mirrors again when asked.
+  void restore_mirror(bool with_mirror, unsigned history) {
+    has_mirror_ = false;
+    if (with_mirror && history == 0 && !nbr.empty()) find_mirrors();
+  }
+  void clear() { start.clear(); nbr.clear(); hist.clear(); has_mirror_ = false; }
 
   // The list itself (public for checkpoints).
   std::vector<std::uint32_t> start, nbr;
   std::vector<Real> hist;
 
  private:
+  void find_mirrors();
+
+  // Mirror entries and the pair loop's scratch (records of 6 values, record 0 all zero; slots).
+  std::vector<std::uint32_t> mirror, slot;
+  std::vector<Real> scratch;
+  bool has_mirror_ = false;
   std::vector<std::uint32_t> old_start_, old_nbr_;
   std::vector<Real> old_hist_;
   std::vector<std::vector<std::uint32_t>> thread_nbr_;

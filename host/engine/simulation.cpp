@@ -327,7 +327,7 @@ template <class Real> void Simulation<Real>::rebuild_list() {
       if (s.history) gather(s.hist, perm_, scratch_real_, s.history);
     });
   }
-  list_.build(p_, grid, cell_start_, cell_sorted_, domain_, Real(skin_), pair_law_.ops->history);
+  list_.build(p_, grid, cell_start_, cell_sorted_, domain_, Real(skin_), pair_law_.ops->history, settings_.pairs_once);
 #pragma omp parallel for schedule(static)
   for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -383,12 +383,15 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane, st
 
 template <class Real> void Simulation<Real>::compute_forces() {
   const std::size_t n = p_.size();
+  if (!forces_zeroed_) {
 #pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    p_.fx[i] = 0; p_.fy[i] = 0; p_.fz[i] = 0;
-    p_.tx[i] = 0; p_.ty[i] = 0; p_.tz[i] = 0;
+    for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+      const auto i = static_cast<std::size_t>(ii);
+      p_.fx[i] = 0; p_.fy[i] = 0; p_.fz[i] = 0;
+      p_.tx[i] = 0; p_.ty[i] = 0; p_.tz[i] = 0;
+    }
   }
+  forces_zeroed_ = false;
   forces_valid_ = true;
   if (n == 0) return;
   const Particles<Real> v = view();
@@ -421,67 +424,101 @@ template <class Real> void Simulation<Real>::compute_forces() {
 // ---------------------------------------------------------------------------------------------
 // integration
 
-template <class Real> void Simulation<Real>::kick_rotation(Real half_dt) {
-  if (!rotate_) return;
-  const long long n = static_cast<long long>(p_.size());
-  Real *wx = p_.wx.data(), *wy = p_.wy.data(), *wz = p_.wz.data();
-  const Real *tx = p_.tx.data(), *ty = p_.ty.data(), *tz = p_.tz.data(), *ii = p_.inv_i.data();
-#pragma omp parallel for schedule(static)
-  for (long long i = 0; i < n; ++i) {
-    wx[i] += half_dt * tx[i] * ii[i];
-    wy[i] += half_dt * ty[i] * ii[i];
-    wz[i] += half_dt * tz[i] * ii[i];
-  }
-}
-
-// First half kick and drift in one pass over memory: v += dt/2 a; x += dt v; wrap periodic axes;
-// count particles outside open axes and non-finite ones; largest displacement since the list build.
+// First half kick (rotation too) and drift in one pass over memory: w += dt/2 T/I; v += dt/2 a;
+// x += dt v; wrap periodic axes; count particles outside open axes and non-finite ones; the two
+// largest displacements since the list build. The force and torque accumulators are cleared once
+// used, so the next evaluation needs no pass of its own.
+//
+// The list stays valid while no unlisted pair can have come within contact: two particles come
+// closer by at most the sum of their displacements, so the two largest displacements must sum to
+// less than the skin (with one fast particle among slow ones this lasts about twice as long as
+// "every displacement below half the skin").
 template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real dt) {
-  kick_rotation(half_dt);
   const long long n = static_cast<long long>(p_.size());
   Real *pos[3] = {p_.x.data(), p_.y.data(), p_.z.data()};
   Real *vel[3] = {p_.vx.data(), p_.vy.data(), p_.vz.data()};
-  const Real *force[3] = {p_.fx.data(), p_.fy.data(), p_.fz.data()};
+  Real *force[3] = {p_.fx.data(), p_.fy.data(), p_.fz.data()};
+  Real *spin[3] = {p_.wx.data(), p_.wy.data(), p_.wz.data()};
+  Real *torque[3] = {p_.tx.data(), p_.ty.data(), p_.tz.data()};
   const Real *ref[3] = {p_.x0.data(), p_.y0.data(), p_.z0.data()};
-  const Real *inv_m = p_.inv_m.data();
+  const Real *inv_m = p_.inv_m.data(), *inv_i = p_.inv_i.data();
+  const bool rotate = rotate_;
   const Real g[3] = {Real(settings_.gravity[0]), Real(settings_.gravity[1]), Real(settings_.gravity[2])};
   const Real lo[3] = {Real(domain_.lo[0]), Real(domain_.lo[1]), Real(domain_.lo[2])};
   const Real hi[3] = {Real(domain_.hi[0]), Real(domain_.hi[1]), Real(domain_.hi[2])};
   const Real len[3] = {Real(domain_.length(0)), Real(domain_.length(1)), Real(domain_.length(2))};
   const bool per[3] = {domain_.periodic[0], domain_.periodic[1], domain_.periodic[2]};
-  Real max_d2 = 0;
+#ifdef _OPENMP
+  const int max_threads = omp_get_max_threads();
+#else
+  const int max_threads = 1;
+#endif
+  if (thread_largest_.size() < 2 * std::size_t(max_threads)) thread_largest_.resize(2 * std::size_t(max_threads));
+  std::fill(thread_largest_.begin(), thread_largest_.end(), 0.0);
+  double *largest = thread_largest_.data();
   std::uint32_t escaped = 0, nonfinite = 0;
-#pragma omp parallel for schedule(static) reduction(max : max_d2) reduction(+ : escaped, nonfinite)
-  for (long long i = 0; i < n; ++i) {
-    Real d2 = 0;
-    bool out = false, finite = true;
-    for (int a = 0; a < 3; ++a) {
-      const Real v = vel[a][i] + half_dt * (force[a][i] * inv_m[i] + g[a]);
-      vel[a][i] = v;
-      Real x = pos[a][i] + dt * v;
-      finite = finite && std::isfinite(x);
-      if (per[a]) {
-        if (x >= hi[a]) x -= len[a];
-        else if (x < lo[a]) x += len[a];
-      } else {
-        out = out || !(x >= lo[a] && x < hi[a]);
+#pragma omp parallel reduction(+ : escaped, nonfinite)
+  {
+    Real first = 0, second = 0;
+#pragma omp for schedule(static) nowait
+    for (long long i = 0; i < n; ++i) {
+      if (rotate) {
+        for (int a = 0; a < 3; ++a) spin[a][i] += half_dt * torque[a][i] * inv_i[i];
       }
-      pos[a][i] = x;
-      const Real d = wrap(x - ref[a][i], len[a], per[a]);
-      d2 += d * d;
+      Real d2 = 0;
+      bool out = false, finite = true;
+      for (int a = 0; a < 3; ++a) {
+        const Real v = vel[a][i] + half_dt * (force[a][i] * inv_m[i] + g[a]);
+        vel[a][i] = v;
+        force[a][i] = 0;
+        torque[a][i] = 0;
+        Real x = pos[a][i] + dt * v;
+        finite = finite && std::isfinite(x);
+        if (per[a]) {
+          if (x >= hi[a]) x -= len[a];
+          else if (x < lo[a]) x += len[a];
+        } else {
+          out = out || !(x >= lo[a] && x < hi[a]);
+        }
+        pos[a][i] = x;
+        const Real d = wrap(x - ref[a][i], len[a], per[a]);
+        d2 += d * d;
+      }
+      if (!(d2 <= first)) {  // NaN lands here and forces a rebuild
+        second = first;
+        first = d2;
+      } else if (d2 > second) {
+        second = d2;
+      }
+      nonfinite += finite ? 0u : 1u;
+      escaped += (out && finite) ? 1u : 0u;
     }
-    max_d2 = std::max(max_d2, d2);
-    nonfinite += finite ? 0u : 1u;
-    escaped += (out && finite) ? 1u : 0u;
+#ifdef _OPENMP
+    const int t = omp_get_thread_num();
+#else
+    const int t = 0;
+#endif
+    largest[2 * t] = double(first);
+    largest[2 * t + 1] = double(second);
   }
+  forces_zeroed_ = true;
   if (nonfinite > 0) {
     time_ += dt_;  // report the step being taken
     ++step_;
     report_bad_particle();
   }
   if (escaped > 0) remove_escaped();
-  const Real half_skin = Real(0.5 * skin_);
-  return escaped > 0 || !(max_d2 <= half_skin * half_skin);
+  double first = 0, second = 0;
+  for (std::size_t k = 0; k < thread_largest_.size(); ++k) {
+    const double d2 = thread_largest_[k];
+    if (!(d2 <= first)) {
+      second = first;
+      first = d2;
+    } else if (d2 > second) {
+      second = d2;
+    }
+  }
+  return escaped > 0 || !(std::sqrt(first) + std::sqrt(second) <= skin_);
 }
 
 template <class Real> void Simulation<Real>::remove_escaped() {
@@ -508,16 +545,22 @@ template <class Real> void Simulation<Real>::remove_escaped() {
 
 // Second half kick fused with the per-step sanity check (NaN, speed limit).
 template <class Real> void Simulation<Real>::kick_and_check(Real half_dt) {
-  kick_rotation(half_dt);
   const long long n = static_cast<long long>(p_.size());
   Real *vx = p_.vx.data(), *vy = p_.vy.data(), *vz = p_.vz.data();
   const Real *fx = p_.fx.data(), *fy = p_.fy.data(), *fz = p_.fz.data(), *im = p_.inv_m.data();
-  const Real *wx = p_.wx.data(), *wy = p_.wy.data(), *wz = p_.wz.data();
+  Real *wx = p_.wx.data(), *wy = p_.wy.data(), *wz = p_.wz.data();
+  const Real *tx = p_.tx.data(), *ty = p_.ty.data(), *tz = p_.tz.data(), *ii = p_.inv_i.data();
+  const bool rotate = rotate_;
   const Real gx = Real(settings_.gravity[0]), gy = Real(settings_.gravity[1]), gz = Real(settings_.gravity[2]);
   const Real limit2 = Real(speed_limit_ * speed_limit_);
   std::uint32_t bad = 0;
 #pragma omp parallel for schedule(static) reduction(+ : bad)
   for (long long i = 0; i < n; ++i) {
+    if (rotate) {
+      wx[i] += half_dt * tx[i] * ii[i];
+      wy[i] += half_dt * ty[i] * ii[i];
+      wz[i] += half_dt * tz[i] * ii[i];
+    }
     const Real ux = vx[i] + half_dt * (fx[i] * im[i] + gx);
     const Real uy = vy[i] + half_dt * (fy[i] * im[i] + gy);
     const Real uz = vz[i] + half_dt * (fz[i] * im[i] + gz);
@@ -561,6 +604,7 @@ template <class Real> void Simulation<Real>::check_overlaps() {
     const auto i = static_cast<std::size_t>(ii);
     for (std::uint32_t k = list_.start[i]; k < list_.start[i + 1]; ++k) {
       const std::uint32_t j = list_.nbr[k];
+      if (j < i) continue;  // the list is symmetric: each pair once
       const Real dx = wrap(p_.x[i] - p_.x[j], len[0], per[0]), dy = wrap(p_.y[i] - p_.y[j], len[1], per[1]),
                  dz = wrap(p_.z[i] - p_.z[j], len[2], per[2]);
       const Real reach = p_.r[i] + p_.r[j];

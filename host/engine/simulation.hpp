@@ -112,7 +112,6 @@ template <class Real = double> class Simulation {
   void compute_forces();
   void plane_contacts(PlaneSlot &plane, std::uint32_t &touching);
   void remove_escaped();
-  void kick_rotation(Real half_dt);
   bool kick_and_drift(Real half_dt, Real dt);  // returns true when the list must be rebuilt
   void kick_and_check(Real half_dt);
   void check_overlaps();
@@ -140,12 +139,14 @@ template <class Real = double> class Simulation {
   bool step_resolved_ = false;  // dt, skin, rotation and limits chosen for the current scene
   bool list_valid_ = false;
   bool forces_valid_ = false;
+  bool forces_zeroed_ = false;  // kick_and_drift cleared the accumulators after using them
   std::uint32_t next_id_ = 0;
   RunCounters counters_;
 
   // Scratch (kept to avoid allocation in rebuilds).
   std::vector<std::uint32_t> perm_, cell_, cell_sorted_, cell_start_, scratch_index_;
   std::vector<Real> scratch_real_;
+  std::vector<double> thread_largest_;  // the two largest displacements of each thread
 };
 
 extern template class Simulation<double>;

@@ -7,6 +7,7 @@
 
 #include "core/error.hpp"
 #include "core/heightmap_vti.hpp"
+#include "core/schema.hpp"
 #include "core/units.hpp"
 #include "workflow/command_line.hpp"
 #include "workflow/commands.hpp"
@@ -55,6 +56,12 @@ int cmd_characterise(int argc, char **argv) {
 
   LayerRequest rq;
   rq.plugin = plugin;
+  {
+    Diagnostics diag;  // the plugin's defaults; --grid overrides its cell
+    const LoadedPlugin &p = PluginRegistry::global().get("metrics", plugin);
+    rq.params = validate_params(SchemaView::of(*p.descriptor), YAML::Node(), "<defaults>", "--metrics " + plugin, diag);
+    diag.throw_if_any();
+  }
   rq.region = parse_region(region, "--region");
   if (!grid.empty()) rq.params["grid"] = length_option(grid, "--grid");
   if (!speed.empty()) rq.speed = length_option(speed, "--U", "m/s");

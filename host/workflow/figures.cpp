@@ -11,7 +11,21 @@
 #include <spreadmap/render/figures.hpp>
 #endif
 
+#include "workflow/mapping.hpp"
+
 namespace spreadmap::figures {
+
+std::string case_title(const std::string &id, const nlohmann::json &inputs) {
+  std::string t = id;
+  const char *sep = ": ";
+  for (auto &[k, v] : inputs.items()) {
+    if (!v.is_number()) continue;
+    const std::string unit = k == "U" ? "m/s" : k == "omega" ? "rad/s" : k == "gap" ? "m" : "";
+    t += sep + k + " = " + display(v.get<double>(), unit);
+    sep = ", ";
+  }
+  return t;
+}
 
 #ifndef SPREADMAP_WITH_RENDER
 

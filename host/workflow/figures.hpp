@@ -19,6 +19,9 @@ namespace fs = std::filesystem;
 
 bool available();
 
+// "c004: U = 70 mm/s, omega = 0 rad/s" from a case's design inputs (SI), for figure titles.
+std::string case_title(const std::string &id, const nlohmann::json &inputs);
+
 // The particles at the end of the case with the spreader where it stopped; `scene` is the case's
 // resolved scene (for the domain and the spreader's pose).
 void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const fs::path &png, const std::string &title);

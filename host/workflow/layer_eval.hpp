@@ -46,6 +46,11 @@ engine::ParticleSet read_particle_file(const std::filesystem::path &file);
 // "14mm:24mm,0:2.5mm" -> region; bare numbers are metres. Throws InputError naming `what`.
 Region parse_region(const std::string &text, const std::string &what);
 
+// The sampling region of a scene when the workflow sets none: the study's 50 mm x 50 mm square
+// centred on the substrate for full-width scenes; for periodic strips the whole width over the
+// middle 40 % of the spreader's travel.
+Region default_region(const nlohmann::json &scene);
+
 // The metric columns of metrics.csv, in this order (extra metrics of other plugins follow).
 const std::vector<std::string> &standard_metric_order();
 

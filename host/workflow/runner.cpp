@@ -4,6 +4,7 @@
 
 #include "core/error.hpp"
 #include "core/suggest.hpp"
+#include "workflow/executor_hook.hpp"
 #include "workflow/scene.hpp"
 #include "workflow/stage.hpp"
 
@@ -14,12 +15,13 @@ std::unique_ptr<Stage> make_stage(const std::string &kind) {
   if (kind == "characterise") return make_characterise_stage();
   if (kind == "train") return make_train_stage();
   if (kind == "map") return make_map_stage();
+  if (kind == "tradeoff") return make_tradeoff_stage();
   throw InputError("unknown stage '" + kind + "'");
 }
 
 static bool needs_scene(const Workflow &wf) {
   for (const auto &s : wf.stages)
-    if (s.kind == "simulate" || s.kind == "characterise") return true;
+    if (s.kind == "simulate" || s.kind == "characterise" || s.kind == "tradeoff") return true;
   return false;
 }
 
@@ -46,7 +48,7 @@ int run_workflow(const fs::path &file, const RunOptions &options, PluginRegistry
                        [&] { std::vector<std::string> k; for (auto &s : v.wf.stages) k.push_back(s.kind); return join(k); }() + ")");
   }
   RunDirectory run(options.out.empty() ? fs::path("runs") / v.wf.name : options.out);
-  run.update_manifest([&](nlohmann::json &m) {
+  if (options.records_manifest()) run.update_manifest([&](nlohmann::json &m) {
     m["workflow"] = {{"file", fs::absolute(file).string()}, {"name", v.wf.name}};
     m["scene"] = v.scene;
   });
@@ -57,10 +59,13 @@ int run_workflow(const fs::path &file, const RunOptions &options, PluginRegistry
     bool selected = options.only.empty();
     for (const auto &o : options.only) selected |= iequals(o, kind);
     if (!selected) continue;
+    if (options.executor && kind != "simulate") options.executor->release();  // the later stages run here alone
     spdlog::info("stage {}: {}", i + 1, kind);
     const auto t0 = std::chrono::steady_clock::now();
     const std::string start = RunDirectory::now_iso();
     v.stages[i]->run(ctx);
+    if (options.executor && !options.executor->runs_later_stages()) break;  // they wait for the cases in a job
+    if (!options.records_manifest()) continue;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     run.update_manifest([&](nlohmann::json &m) {
       m["stages"][kind] = {{"start", start}, {"end", RunDirectory::now_iso()}, {"wall_seconds", wall}};

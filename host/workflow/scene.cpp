@@ -1,7 +1,9 @@
 #include "workflow/scene.hpp"
 
+#include <fmt/format.h>
 #include <spreadmap/params.hpp>
 
+#include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 
@@ -113,6 +115,26 @@ YAML::Node overlay(const YAML::Node &preset, const YAML::Node &user) {
   return out;
 }
 
+// The keys of `node` that one of the schemas declares. A preset is written for the default plugins
+// (roller, hooke_slider); when the user picks another plugin, the preset's values apply only where
+// that plugin has the key. The user's own spreader keys are split this way between geometry and law.
+YAML::Node known_only(const YAML::Node &node, const SchemaView &a, const SchemaView &b = {}) {
+  YAML::Node out(YAML::NodeType::Map);
+  if (node && node.IsMap())
+    for (const auto &kv : node) {
+      const std::string key = kv.first.as<std::string>();
+      if (a.find(key) || b.find(key)) out[key] = kv.second;
+    }
+  return out;
+}
+
+// "error: " is added once, by the diagnostics that carry the position.
+std::string without_error_prefix(std::string text) {
+  const std::string tag = "error: ";
+  if (text.rfind(tag, 0) == 0) text.erase(0, tag.size());
+  return text;
+}
+
 // Validates a section key by key, reporting positions in the file each key came from.
 nlohmann::json validate_split(const SchemaView &schema, const YAML::Node &preset, const YAML::Node &user,
                               const std::string &scene_file, const std::string &section, Diagnostics &diag,
@@ -125,6 +147,61 @@ nlohmann::json validate_split(const SchemaView &schema, const YAML::Node &preset
   }
   fill_defaults(schema, values, Location::of(scene_file, user ? user : preset), section, diag);
   return values;
+}
+
+// Checks across keys that no single schema entry can express; each names the key the user wrote
+// (or the section, when the value came from the preset).
+void check_consistency(const nlohmann::json &scene, const YAML::Node &user, const std::string &file, Diagnostics &diag) {
+  auto where = [&](const char *section, const char *key) {
+    const YAML::Node sec = user[section];
+    if (sec && sec.IsMap() && sec[key]) return Location::of(file, sec[key]);
+    return Location::of(file, sec ? sec : user);
+  };
+  auto number = [&](const char *section, const char *key, double &out) {
+    const auto &sec = scene.contains(section) ? scene[section] : nlohmann::json();
+    if (!sec.is_object() || !sec.contains(key) || !sec[key].is_number()) return false;
+    out = sec[key].get<double>();
+    return true;
+  };
+  double count, volume, from, to, length, height;
+  if (number("powder", "count", count) && number("powder", "volume", volume) && count < 1 && volume <= 0)
+    diag.error(where("powder", "count"), "scene.powder.count", "no powder: count is 0 and no volume is given",
+               "give count >= 1 (spheres) or volume > 0 (solid volume of the heap)");
+  if (number("powder", "heap_from", from) && number("powder", "heap_to", to) && from >= to)
+    diag.error(where("powder", "heap_to"), "scene.powder.heap_to",
+               fmt::format("the heap ends at x = {:g} m, not after its start heap_from = {:g} m", to, from));
+  if (number("powder", "heap_to", to) && number("domain", "length", length) && to > length)
+    diag.error(where("powder", "heap_to"), "scene.powder.heap_to",
+               fmt::format("the heap ends at x = {:g} m, beyond the domain (length {:g} m)", to, length));
+  const auto &spreader = scene.contains("spreader") ? scene["spreader"] : nlohmann::json();
+  if (spreader.is_object() && spreader.contains("params") && spreader["params"].contains("gap") &&
+      spreader["params"]["gap"].is_number() && number("domain", "height", height) &&
+      spreader["params"]["gap"].get<double>() >= height)
+    diag.error(where("spreader", "gap"), "scene.spreader.gap",
+               fmt::format("the gap ({:g} m) is not below the top of the domain (height {:g} m): the spreader would "
+                           "pass above everything", spreader["params"]["gap"].get<double>(), height));
+}
+
+// A plugin's own checks across its parameters (its bind()) run now, before any work starts, so that a
+// refusal points at the workflow's section rather than surfacing in the middle of a run.
+void probe_plugins(const nlohmann::json &scene, const LoadedPlugin &law, const LoadedPlugin &geo, const YAML::Node &user,
+                   const std::string &file, Diagnostics &diag) {
+  auto section = [&](const char *name) { return Location::of(file, user[name] ? user[name] : user); };
+  auto probe = [&](const LoadedPlugin &plugin, const nlohmann::json &params, const char *name) {
+    try {
+      PluginInstance instance(plugin, params.dump());
+      return true;
+    } catch (const PluginError &e) {
+      diag.error(section(name), std::string("scene.") + name, without_error_prefix(e.what()));
+      return false;
+    }
+  };
+  // the substrate and spreader laws inherit the contact's values: a refusal there is reported once
+  if (probe(law, scene["contact"]["params"], "contact")) {
+    probe(law, scene["substrate"]["law"], "substrate");
+    probe(law, scene["spreader"]["law"], "spreader");
+  }
+  probe(geo, scene["spreader"]["params"], "spreader");
 }
 
 }  // namespace
@@ -153,7 +230,8 @@ nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagn
     if (SchemaView{engine_params, std::size(engine_params)}.find(kv.first.as<std::string>())) top[kv.first] = kv.second;
   auto engine = validate_params({engine_params, std::size(engine_params)}, top, file, "scene", diag);
   scene.update(engine);
-  const std::string preset = engine.value("preset", std::string("quick"));
+  // an invalid preset was reported above; go on with quick to report the other problems too
+  const std::string preset = engine.contains("preset") && engine["preset"].is_string() ? engine["preset"].get<std::string>() : "quick";
   const YAML::Node p = YAML::Load(preset_text(preset));
 
   for (const auto &s : host_sections)
@@ -166,7 +244,7 @@ nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagn
   try {
     law = &registry.get("contact", law_name);
   } catch (const std::exception &e) {
-    diag.error(Location::of(file, user["contact"] && user["contact"]["use"] ? user["contact"]["use"] : user), "scene.contact.use", e.what());
+    diag.error(Location::of(file, user["contact"] && user["contact"]["use"] ? user["contact"]["use"] : user), "scene.contact.use", without_error_prefix(e.what()));
   }
   const YAML::Node spreader = overlay(p["spreader"], user["spreader"]);
   const std::string geo_name = spreader["use"] ? spreader["use"].as<std::string>() : "";
@@ -174,14 +252,14 @@ nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagn
   try {
     geo = &registry.get("spreader", geo_name);
   } catch (const std::exception &e) {
-    diag.error(Location::of(file, user["spreader"] && user["spreader"]["use"] ? user["spreader"]["use"] : user), "scene.spreader.use", e.what());
+    diag.error(Location::of(file, user["spreader"] && user["spreader"]["use"] ? user["spreader"]["use"] : user), "scene.spreader.use", without_error_prefix(e.what()));
   }
   if (law) {
     const auto schema = SchemaView::of(*law->descriptor);
-    auto pp = validate_split(schema, p["contact"], user["contact"], file, "scene.contact", diag, {"use"});
+    auto pp = validate_split(schema, known_only(p["contact"], schema), user["contact"], file, "scene.contact", diag, {"use"});
     scene["contact"] = {{"use", law_name}, {"params", pp}};
     // substrate: law keys only
-    auto sub = validate_params(schema, p["substrate"], "<preset>", "scene.substrate", diag, {}, false);
+    auto sub = validate_params(schema, known_only(p["substrate"], schema), "<preset>", "scene.substrate", diag, {}, false);
     if (user["substrate"]) {
       auto mine = validate_params(schema, user["substrate"], file, "scene.substrate", diag, {}, false);
       for (auto &[k, v] : mine.items()) sub[k] = v;
@@ -192,21 +270,23 @@ nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagn
     if (geo) {
       // spreader section: geometry keys go to the geometry, law keys to the particle-spreader law
       const auto gschema = SchemaView::of(*geo->descriptor);
-      std::set<std::string> law_keys, geo_keys = {"use"};
+      std::set<std::string> law_keys;
       for (std::size_t i = 0; i < schema.n; ++i) law_keys.insert(schema.params[i].name);
-      for (std::size_t i = 0; i < gschema.n; ++i) geo_keys.insert(gschema.params[i].name);
-      auto gvals = validate_split(gschema, p["spreader"], user["spreader"], file, "scene.spreader", diag,
-                                  [&] { auto k = law_keys; k.insert("use"); return k; }());
+      auto gvals = validate_split(gschema, known_only(p["spreader"], gschema, schema), user["spreader"], file,
+                                  "scene.spreader", diag, [&] { auto k = law_keys; k.insert("use"); return k; }());
+      // law keys only: a key neither plugin knows was reported once, by the geometry above
       nlohmann::json spr_law = pp;
-      auto lp = validate_params(schema, p["spreader"], "<preset>", "scene.spreader", diag, geo_keys, false);
+      auto lp = validate_params(schema, known_only(p["spreader"], schema), "<preset>", "scene.spreader", diag, {}, false);
       for (auto &[k, v] : lp.items()) spr_law[k] = v;
-      if (user["spreader"]) {
-        auto mine = validate_params(schema, user["spreader"], file, "scene.spreader", diag, geo_keys, false);
+      if (user["spreader"] && user["spreader"].IsMap()) {
+        auto mine = validate_params(schema, known_only(user["spreader"], schema), file, "scene.spreader", diag, {}, false);
         for (auto &[k, v] : mine.items()) spr_law[k] = v;
       }
       scene["spreader"] = {{"use", geo_name}, {"params", gvals}, {"law", spr_law}};
     }
   }
+  check_consistency(scene, user, file, diag);
+  if (diag.empty() && law && geo) probe_plugins(scene, *law, *geo, user, file, diag);
   return scene;
 }
 

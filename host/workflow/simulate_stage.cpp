@@ -3,14 +3,18 @@
 #include <spdlog/spdlog.h>
 
 #include <atomic>
+#include <mutex>
 #include <thread>
 
 #include "core/error.hpp"
+#include "cuda/backend.hpp"
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "core/stop.hpp"
+#include "workflow/adaptive_run.hpp"
 #include "workflow/case_runner.hpp"
 #include "workflow/design.hpp"
+#include "workflow/executor_hook.hpp"
 #include "workflow/figures.hpp"
 #include "workflow/layer_eval.hpp"
 #include "workflow/progress.hpp"
@@ -32,16 +36,20 @@ class SimulateStage : public Stage {
     }
     if (scene.is_null() || !scene.contains("spreader")) return;  // scene errors already reported
     design_ = parse_design(entry.config["design"], file, "simulate.design", scene, registry, diag);
-    if (design_.type == "adaptive")
-      diag.error(Location::of(file, entry.config["design"]["type"]), "simulate.design.type",
-                 "the adaptive design runs through the train stage's gp model: not available in this build");
   }
 
   void run(StageContext &ctx) override {
+    if (design_.type == "adaptive") return run_adaptive_design(ctx, design_, render_);
     const std::size_t n = design_.cases.size();
+    const auto &only_case = ctx.options.only_case;
+    if (only_case && *only_case >= n)
+      throw InputError("error: --case " + std::to_string(*only_case) + ": the design has " + std::to_string(n) +
+                       " cases, numbered 0 to " + std::to_string(n - 1));
     std::vector<CaseRequest> todo;
+    std::vector<std::size_t> todo_index;  // design position of each todo entry, for an executor
     nlohmann::json cases = nlohmann::json::array();
     for (std::size_t i = 0; i < n; ++i) {
+      if (only_case && i != *only_case) continue;
       CaseRequest req;
       req.id = RunDirectory::case_id(i);
       req.scene = case_scene(ctx.scene, design_, i);
@@ -57,14 +65,20 @@ class SimulateStage : public Stage {
       }
       write_atomic(req.dir / "scene.json", req.scene.dump(2) + "\n");
       todo.push_back(std::move(req));
+      todo_index.push_back(i);
     }
-    ctx.run.update_manifest([&](nlohmann::json &m) {
+    if (ctx.options.records_manifest()) ctx.run.update_manifest([&](nlohmann::json &m) {
       nlohmann::json old = m.value("cases", nlohmann::json::array());
       for (auto &c : cases)
         for (const auto &o : old)
           if (o.value("id", "") == c["id"] && o.value("hash", "") == c["hash"])
             for (const char *k : {"start", "end", "wall_seconds", "status"})
               if (o.contains(k)) c[k] = o[k];
+      // Finished where no record says so: by a Slurm array task (they leave the manifest alone), or
+      // on an MPI rank killed before rank 0 heard of it. case.json is the proof.
+      for (auto &c : cases)
+        if (!c.contains("status") && case_finished(ctx.run.case_dir(c["id"].get<std::string>()), c["hash"].get<std::string>()))
+          c["status"] = "done";
       m["cases"] = cases;
       m["design"] = {{"type", design_.type}, {"variables", [&] {
                         auto v = nlohmann::json::array();
@@ -76,13 +90,27 @@ class SimulateStage : public Stage {
       m["plugins"]["spreader/" + ctx.scene["spreader"]["use"].get<std::string>()] =
           ctx.registry.get("spreader", ctx.scene["spreader"]["use"]).descriptor->version;
     });
-    spdlog::info("simulate: {} cases, {} to run, {} finished already", n, todo.size(), n - todo.size());
-    if (ctx.scene["backend"] == "cuda")
-      throw InputError("error: scene.backend: cuda was requested, but this build has no CUDA backend; set backend: cpu or auto");
+    if (only_case)
+      spdlog::info("simulate: case {} of {}: {}", RunDirectory::case_id(*only_case), n,
+                   todo.empty() ? "finished already" : "to run");
+    else
+      spdlog::info("simulate: {} cases, {} to run, {} finished already", n, todo.size(), n - todo.size());
+    std::string backend_note;  // throws InputError for `cuda` with no usable device
+    const cuda::Backend backend = cuda::choose_backend(ctx.scene["backend"].get<std::string>(), backend_note);
+    (void)backend;  // the engine runs on the CPU until a GPU engine path exists (host/cuda/backend.hpp)
+    if (only_case || ctx.options.executor) {  // the cases run one by one here, on MPI ranks or as Slurm tasks
+      CaseBatch batch{{}, n};
+      for (std::size_t k = 0; k < todo.size(); ++k) batch.jobs.push_back({todo_index[k], std::move(todo[k]), render_});
+      if (only_case) {
+        for (auto &job : batch.jobs) run_job_here(job, ctx.registry, ctx.options.case_threads);
+      } else {
+        ctx.options.executor->run_cases(batch, ctx);
+      }
+      return;
+    }
     if (todo.empty()) return;
-    static bool said = false;
-    if (!said && ctx.scene["backend"] == "auto") spdlog::info("backend: cpu (no CUDA backend in this build)");
-    said = true;
+    static std::once_flag backend_said;
+    std::call_once(backend_said, [&] { spdlog::info("{}", backend_note); });
 
     Progress progress("simulate", todo.size(), ctx.options.quiet);
     const int jobs = std::max(1, std::min<int>(ctx.options.jobs, int(todo.size())));
@@ -141,7 +169,7 @@ class SimulateStage : public Stage {
   // The end state as a picture: cases/cNNN/snapshot.png.
   static void snapshot(const CaseRequest &req) {
     try {
-      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, req.dir / "snapshot.png", req.id + ": " + req.inputs.dump());
+      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, req.dir / "snapshot.png", figures::case_title(req.id, req.inputs));
     } catch (const std::exception &e) {
       spdlog::warn("{}: snapshot not drawn: {}", req.id, e.what());
     }

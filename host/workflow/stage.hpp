@@ -4,6 +4,7 @@
 #pragma once
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -14,12 +15,21 @@
 
 namespace spreadmap {
 
+class CaseExecutor;
+
 struct RunOptions {
   bool force = false;
   bool quiet = false;
   int jobs = 1;
   std::set<std::string> only;  // empty = all stages
   fs::path out;                // run directory; empty = runs/<name>
+  // Where the simulate stage's cases run (workflow/executor_hook.hpp); null: here, in `jobs` threads.
+  CaseExecutor *executor = nullptr;
+  // --case N: this one case of the design only, as a Slurm array task runs it. Many such processes
+  // run at once, so none of them writes manifest.json (the job of the later stages does).
+  std::optional<std::size_t> only_case;
+  int case_threads = 0;  // OpenMP threads of that case; 0: scene.threads, else OpenMP's default
+  bool records_manifest() const { return !only_case; }
 };
 
 struct StageContext {
@@ -42,6 +52,7 @@ std::unique_ptr<Stage> make_simulate_stage();
 std::unique_ptr<Stage> make_characterise_stage();
 std::unique_ptr<Stage> make_train_stage();
 std::unique_ptr<Stage> make_map_stage();
+std::unique_ptr<Stage> make_tradeoff_stage();
 std::unique_ptr<Stage> make_stage(const std::string &kind);
 
 // The whole workflow: load, validate everything (scene, every stage), then run the selected

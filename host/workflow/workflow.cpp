@@ -1,5 +1,7 @@
 #include "workflow/workflow.hpp"
 
+#include <algorithm>
+
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/suggest.hpp"
@@ -89,6 +91,13 @@ Workflow load_workflow(const fs::path &file) {
         const std::string near = closest(kind, stage_kinds());
         diag.error(Location::of(f, s.IsMap() ? s.begin()->first : s), path, "unknown stage '" + kind + "'",
                    (near.empty() ? "" : "did you mean '" + near + "'? ") + "stages: " + join(stage_kinds()));
+        continue;
+      }
+      // each stage writes its own files in the run directory (and its manifest entry): once only
+      if (const auto dup = std::find_if(wf.stages.begin(), wf.stages.end(), [&](const StageEntry &e) { return e.kind == kind; });
+          dup != wf.stages.end()) {
+        diag.error(Location::of(f, s.IsMap() ? s.begin()->first : s), path, "the stage '" + kind + "' appears twice",
+                   "first at " + dup->where.str() + "; a workflow runs each stage once");
         continue;
       }
       if (config && !config.IsNull() && !config.IsMap()) {

@@ -23,13 +23,20 @@ template <class Real> struct Particles {
 };
 
 // Full (both-direction) neighbour list in CSR form: the neighbours of particle i are
-// nbr[start[i] .. start[i+1]). Each particle sums its own forces in this fixed order, so results do
-// not depend on the number of threads. hist holds `history` values per list entry; the engine
-// carries them across list rebuilds.
+// nbr[start[i] .. start[i+1]), in increasing index order. Each particle sums its own forces in this
+// fixed order, so results do not depend on the number of threads. hist holds `history` values per
+// list entry; the engine carries them across list rebuilds.
+// Optional (null when absent), for laws without history on the CPU (pair_once.hpp): mirror[k] is
+// the entry (j, i) of entry k = (i, j); scratch holds records of 6 values, a leading all-zero one
+// and two per entry (6 * (2 * entries + 1)), slot one value per entry; the loop overwrites both
+// except record 0.
 template <class Real> struct PairList {
   const std::uint32_t *start;
   const std::uint32_t *nbr;
   Real *hist;
+  const std::uint32_t *mirror;
+  Real *scratch;
+  std::uint32_t *slot;
 };
 
 // One wall contact per particle and wall, stored densely by particle index: particle i touches the

@@ -66,73 +66,96 @@ SM_HD void accumulate(const ContactForce<Real> &f, const Vec3<Real> &normal, Rea
   torque += cross(normal * (-r_i), f.tangent) + f.torque;
 }
 
+// The kinematics of the touching pair (i, j) seen from i; d = x_i - x_j (minimum image), dist2 = |d|^2.
+template <class Real>
+SM_HD ContactState<Real> pair_contact_state(const Particles<Real> &p, std::uint32_t i, std::uint32_t j,
+                                            const Vec3<Real> &d, Real dist2) {
+  const Real dist = std::sqrt(dist2);
+  ContactState<Real> c;
+  c.normal = d * (Real(1) / dist);
+  c.overlap = (p.r[i] + p.r[j]) - dist;
+  const Vec3<Real> vi{p.vx[i], p.vy[i], p.vz[i]}, wi{p.wx[i], p.wy[i], p.wz[i]};
+  const Vec3<Real> vj{p.vx[j], p.vy[j], p.vz[j]}, wj{p.wx[j], p.wy[j], p.wz[j]};
+  // velocity of i's surface relative to j's at the contact point
+  const Vec3<Real> v = vi - vj - cross(wi * p.r[i] + wj * p.r[j], c.normal);
+  c.v_n = dot(v, c.normal);
+  c.v_t = v - c.normal * c.v_n;
+  c.w_rel = wi - wj;
+  c.m_eq = p.m[i] * p.m[j] / (p.m[i] + p.m[j]);
+  c.r_eff = p.r[i] * p.r[j] / (p.r[i] + p.r[j]);
+  c.dt = p.dt;
+  return c;
+}
+
+// The forces on particle i from its neighbours, summed in list order and added to its accumulators.
+// The body of both backends' pair loops (the OpenMP loop below, one GPU thread per particle under
+// CUDA), so the contact kinematics exist once.
+template <class Law, class Real>
+SM_HD void pair_forces_on(const Law &law, const Particles<Real> &p, const PairList<Real> &list, std::uint32_t i) {
+  const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
+  Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
+  for (std::uint32_t k = list.start[i]; k < list.start[i + 1]; ++k) {
+    const std::uint32_t j = list.nbr[k];
+    Vec3<Real> d{wrap(p.x[i] - p.x[j], lx, p.periodic[0]), wrap(p.y[i] - p.y[j], ly, p.periodic[1]),
+                 wrap(p.z[i] - p.z[j], lz, p.periodic[2])};
+    const Real dist2 = dot(d, d), reach = p.r[i] + p.r[j];
+    Real *h = Law::history ? list.hist + std::size_t(k) * Law::history : nullptr;
+    if (dist2 >= reach * reach) {
+      for (int q = 0; q < Law::history; ++q) h[q] = 0;  // apart: forget
+      continue;
+    }
+    const ContactState<Real> c = pair_contact_state(p, i, j, d, dist2);
+    accumulate(law(c, h), c.normal, p.r[i], force, torque);
+  }
+  p.fx[i] += force.x; p.fy[i] += force.y; p.fz[i] += force.z;
+  p.tx[i] += torque.x; p.ty[i] += torque.y; p.tz[i] += torque.z;
+}
+
+// Evaluates each touching pair once when the engine gives the list's mirror (pair_once.hpp).
+template <class Law, class Real> void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Real> &list);
+
 // Particle-particle loop: each particle sums its own forces over its neighbours in list order.
 template <class Law, class Real>
 void pair_loop(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
-  const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(p.n); ++ii) {
-    const auto i = static_cast<std::uint32_t>(ii);
-    Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
-    const Vec3<Real> vi{p.vx[i], p.vy[i], p.vz[i]}, wi{p.wx[i], p.wy[i], p.wz[i]};
-    for (std::uint32_t k = list.start[i]; k < list.start[i + 1]; ++k) {
-      const std::uint32_t j = list.nbr[k];
-      Vec3<Real> d{wrap(p.x[i] - p.x[j], lx, p.periodic[0]), wrap(p.y[i] - p.y[j], ly, p.periodic[1]),
-                   wrap(p.z[i] - p.z[j], lz, p.periodic[2])};
-      const Real dist2 = dot(d, d), reach = p.r[i] + p.r[j];
-      Real *h = Law::history ? list.hist + std::size_t(k) * Law::history : nullptr;
-      if (dist2 >= reach * reach) {
-        for (int q = 0; q < Law::history; ++q) h[q] = 0;  // apart: forget
-        continue;
-      }
-      const Real dist = std::sqrt(dist2);
-      ContactState<Real> c;
-      c.normal = d * (Real(1) / dist);
-      c.overlap = reach - dist;
-      const Vec3<Real> vj{p.vx[j], p.vy[j], p.vz[j]}, wj{p.wx[j], p.wy[j], p.wz[j]};
-      // velocity of i's surface relative to j's at the contact point
-      const Vec3<Real> v = vi - vj - cross(wi * p.r[i] + wj * p.r[j], c.normal);
-      c.v_n = dot(v, c.normal);
-      c.v_t = v - c.normal * c.v_n;
-      c.w_rel = wi - wj;
-      c.m_eq = p.m[i] * p.m[j] / (p.m[i] + p.m[j]);
-      c.r_eff = p.r[i] * p.r[j] / (p.r[i] + p.r[j]);
-      c.dt = p.dt;
-      accumulate(law(c, h), c.normal, p.r[i], force, torque);
-    }
-    p.fx[i] += force.x; p.fy[i] += force.y; p.fz[i] += force.z;
-    p.tx[i] += torque.x; p.ty[i] += torque.y; p.tz[i] += torque.z;
+  if constexpr (Law::history == 0) {
+    if (list.mirror && list.scratch && list.slot) return pair_loop_once(law, p, list);
   }
+#pragma omp parallel for schedule(static)
+  for (long long ii = 0; ii < static_cast<long long>(p.n); ++ii) pair_forces_on(law, p, list, static_cast<std::uint32_t>(ii));
+}
+
+// The force of one wall on particle i from its dense record (nothing when not touching). The body of
+// both backends' wall loops.
+template <class Law, class Real>
+SM_HD void wall_force_on(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t i) {
+  Real *h = Law::history ? w.hist + std::size_t(i) * Law::history : nullptr;
+  if (!(w.overlap[i] > 0)) {
+    for (int q = 0; q < Law::history; ++q) h[q] = 0;
+    return;
+  }
+  ContactState<Real> c;
+  c.normal = {w.nx[i], w.ny[i], w.nz[i]};
+  c.overlap = w.overlap[i];
+  const Vec3<Real> wi{p.wx[i], p.wy[i], p.wz[i]};
+  const Vec3<Real> v = Vec3<Real>{p.vx[i] - w.vx[i], p.vy[i] - w.vy[i], p.vz[i] - w.vz[i]} -
+                       cross(wi * p.r[i], c.normal);
+  c.v_n = dot(v, c.normal);
+  c.v_t = v - c.normal * c.v_n;
+  c.w_rel = wi;
+  c.m_eq = p.m[i];
+  c.r_eff = p.r[i];
+  c.dt = p.dt;
+  Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
+  accumulate(law(c, h), c.normal, p.r[i], force, torque);
+  p.fx[i] += force.x; p.fy[i] += force.y; p.fz[i] += force.z;
+  p.tx[i] += torque.x; p.ty[i] += torque.y; p.tz[i] += torque.z;
 }
 
 // Particle-wall loop over the dense per-particle records of one wall.
 template <class Law, class Real>
 void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w) {
 #pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(w.n); ++ii) {
-    const auto i = static_cast<std::uint32_t>(ii);
-    Real *h = Law::history ? w.hist + std::size_t(i) * Law::history : nullptr;
-    if (!(w.overlap[i] > 0)) {
-      for (int q = 0; q < Law::history; ++q) h[q] = 0;
-      continue;
-    }
-    ContactState<Real> c;
-    c.normal = {w.nx[i], w.ny[i], w.nz[i]};
-    c.overlap = w.overlap[i];
-    const Vec3<Real> wi{p.wx[i], p.wy[i], p.wz[i]};
-    const Vec3<Real> v = Vec3<Real>{p.vx[i] - w.vx[i], p.vy[i] - w.vy[i], p.vz[i] - w.vz[i]} -
-                         cross(wi * p.r[i], c.normal);
-    c.v_n = dot(v, c.normal);
-    c.v_t = v - c.normal * c.v_n;
-    c.w_rel = wi;
-    c.m_eq = p.m[i];
-    c.r_eff = p.r[i];
-    c.dt = p.dt;
-    Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
-    accumulate(law(c, h), c.normal, p.r[i], force, torque);
-    p.fx[i] += force.x; p.fy[i] += force.y; p.fz[i] += force.z;
-    p.tx[i] += torque.x; p.ty[i] += torque.y; p.tz[i] += torque.z;
-  }
+  for (long long ii = 0; ii < static_cast<long long>(w.n); ++ii) wall_force_on(law, p, w, static_cast<std::uint32_t>(ii));
 }
 
 namespace detail {
@@ -150,6 +173,8 @@ template <class Law> struct ContactOps {
 }  // namespace detail
 
 }  // namespace spreadmap
+
+#include <spreadmap/pair_once.hpp>  // pair_loop_once, the CPU loop for laws without history
 
 // Registers a contact law. The static_asserts read as sentences when a law breaks the rules.
 #define SPREADMAP_CONTACT_PLUGIN(LAW, NAME, VERSION, SUMMARY)                                        \

@@ -47,20 +47,24 @@ typedef struct sm_geometry_ops_v1 {
 } sm_geometry_ops_v1;
 }
 
+// Particle i's dense wall-contact record for this geometry at time p.t. The body of both backends'
+// geometry loops.
+template <class Geometry, class Real>
+SM_HD void geometry_contact_of(const Geometry &g, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t i) {
+  WallHit<Real> hit{0, {0, 0, 1}, {0, 0, 0}};
+  if (g(Vec3<Real>{p.x[i], p.y[i], p.z[i]}, p.r[i], p.t, hit) && hit.overlap > 0) {
+    w.overlap[i] = hit.overlap;
+    w.nx[i] = hit.normal.x; w.ny[i] = hit.normal.y; w.nz[i] = hit.normal.z;
+    w.vx[i] = hit.velocity.x; w.vy[i] = hit.velocity.y; w.vz[i] = hit.velocity.z;
+  } else {
+    w.overlap[i] = 0;
+  }
+}
+
 template <class Geometry, class Real>
 void geometry_loop(const Geometry &g, const Particles<Real> &p, WallContacts<Real> &w) {
 #pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(p.n); ++ii) {
-    const auto i = static_cast<std::uint32_t>(ii);
-    WallHit<Real> hit{0, {0, 0, 1}, {0, 0, 0}};
-    if (g(Vec3<Real>{p.x[i], p.y[i], p.z[i]}, p.r[i], p.t, hit) && hit.overlap > 0) {
-      w.overlap[i] = hit.overlap;
-      w.nx[i] = hit.normal.x; w.ny[i] = hit.normal.y; w.nz[i] = hit.normal.z;
-      w.vx[i] = hit.velocity.x; w.vy[i] = hit.velocity.y; w.vz[i] = hit.velocity.z;
-    } else {
-      w.overlap[i] = 0;
-    }
-  }
+  for (long long ii = 0; ii < static_cast<long long>(p.n); ++ii) geometry_contact_of(g, p, w, static_cast<std::uint32_t>(ii));
 }
 
 namespace detail {

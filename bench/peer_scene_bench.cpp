@@ -1,0 +1,261 @@
+// bench_peer_scene: throughput of the simulate stage's spreading run on the peers' scene
+// (shared/peers/README.md, workflows/peer_liggghts.yaml): 5000 spheres of 250 um settled on a
+// 2.5 mm periodic strip, a 10 mm roller at 100 mm/s (omega 0), hooke_slider with LIGGGHTS' viscous
+// slider, the substrate plane, dt = 7.5e-7 s, double precision. The Simulation, its walls and its
+// plugins are built by the same code as a case of the simulate stage (workflow/case_setup.hpp).
+//
+// It times `steps` spreading steps from the settled heap on each thread count, `repeats` times
+// (interleaved, so that a slow spell of the machine hits every thread count alike), and prints the
+// median particle-steps/s (particle count summed over the steps / wall time, as LIGGGHTS' figure),
+// the speed-up, the machine, and LIGGGHTS' serial figure: the one given with --liggghts (measured in
+// the same run by bench/peer_scene.sh), else RESULTS.md's, labelled as such. It also checks that
+// every run ends in the bitwise same state (deterministic mode, any thread count).
+//
+// Usage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] [--steps N]
+//          [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT]
+//   --heap: a settled heap (state .vtp, e.g. runs/peer_liggghts/heaps/heap_*.vtp); without it one is
+//   settled first (~0.1 s of simulated time, a few minutes) and written to --save-heap if given.
+//   --skip: spreading steps run once (not timed) before the timed ones; each repeat resumes there
+//   from a checkpoint, as a resumed case does.
+#include <omp.h>
+#include <spdlog/spdlog.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+#include <unistd.h>
+#include <vector>
+
+#include "core/registry.hpp"
+#include "engine/vtp_io.hpp"
+#include "workflow/case_setup.hpp"
+#include "workflow/scene.hpp"
+#include "workflow/workflow.hpp"
+
+namespace sm = spreadmap;
+namespace fs = std::filesystem;
+
+namespace {
+
+// RESULTS.md, serial runs w0_s1/w0_s2 (6.35e6, 6.41e6) on a 2-core machine.
+constexpr double liggghts_results_md = 6.4e6;
+
+struct Options {
+  fs::path workflow = fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "peer_liggghts.yaml";
+  fs::path heap, save_heap;
+  std::uint64_t steps = 20000, skip = 0;
+  int repeats = 3;
+  std::vector<int> threads{1, 2};
+  double omega = 0;
+  double liggghts = liggghts_results_md;
+  std::string liggghts_label = "from shared/peers/RESULTS.md (serial, 2-core machine), NOT measured in this run";
+};
+
+[[noreturn]] void usage(const char *why) {
+  std::fprintf(stderr,
+               "bench_peer_scene: %s\nusage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] "
+               "[--steps N] [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT]\n",
+               why);
+  std::exit(2);
+}
+
+Options parse(int argc, char **argv) {
+  Options o;
+  for (int k = 1; k < argc; ++k) {
+    const std::string a = argv[k];
+    auto value = [&]() -> std::string {
+      if (k + 1 >= argc) usage(("missing value after " + a).c_str());
+      return argv[++k];
+    };
+    if (a == "--workflow") o.workflow = value();
+    else if (a == "--heap") o.heap = value();
+    else if (a == "--save-heap") o.save_heap = value();
+    else if (a == "--steps") o.steps = std::stoull(value());
+    else if (a == "--skip") o.skip = std::stoull(value());
+    else if (a == "--repeats") o.repeats = std::max(1, std::stoi(value()));
+    else if (a == "--omega") o.omega = std::stod(value());
+    else if (a == "--liggghts") o.liggghts = std::stod(value());
+    else if (a == "--liggghts-label") o.liggghts_label = value();
+    else if (a == "--threads") {
+      o.threads.clear();
+      std::string list = value();
+      for (std::size_t p = 0; p < list.size();) {
+        const std::size_t q = std::min(list.find(',', p), list.size());
+        o.threads.push_back(std::max(1, std::stoi(list.substr(p, q - p))));
+        p = q + 1;
+      }
+    } else usage(("unknown argument " + a).c_str());
+  }
+  if (o.threads.empty() || o.steps == 0) usage("need at least one thread count and one step");
+  return o;
+}
+
+std::string first_line_of(const char *file, const char *key) {
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+std::string load_average() {
+  std::ifstream in("/proc/loadavg");
+  std::string a, b, c;
+  in >> a >> b >> c;
+  return a + " " + b + " " + c;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The end state as bytes in id order, to compare runs bitwise.
+std::vector<double> state_by_id(const sm::engine::ParticleSet &s) {
+  std::vector<std::size_t> order(s.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s.id[a] < s.id[b]; });
+  std::vector<double> out;
+  for (std::size_t i : order)
+    for (const auto *c : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz, &s.wx, &s.wy, &s.wz}) out.push_back((*c)[i]);
+  return out;
+}
+
+struct Timing {
+  double particle_steps_per_second;
+  double neighbours;        // full-list entries per particle at the end
+  std::uint64_t list_builds, removed;
+  std::size_t particles_end;
+  std::vector<double> end_state;
+};
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  const Options opt = parse(argc, argv);
+  spdlog::set_level(spdlog::level::warn);
+  sm::PluginRegistry registry(sm::PluginRegistry::default_roots());
+
+  // The peers' scene as the simulate stage resolves it; the case at omega (0 by default), heap seed 1.
+  sm::Diagnostics diag;
+  nlohmann::json scene = sm::resolve_scene(sm::load_workflow(opt.workflow), registry, diag);
+  diag.throw_if_any();
+  scene["spreader"]["params"]["omega"] = opt.omega;
+  scene["powder"]["seed"] = 1;
+  if (scene["precision"] != "double") usage("the workflow's scene is not in double precision");
+
+  sm::engine::ParticleSet heap;
+  if (!opt.heap.empty()) {
+    heap = sm::engine::read_vtp(opt.heap).particles;
+    std::printf("heap: %zu spheres read from %s\n", heap.size(), opt.heap.c_str());
+  } else {
+    omp_set_num_threads(std::min(2, omp_get_num_procs()));
+    std::printf("heap: settling %s s of a new heap (seed 1) ...\n", scene["powder"]["settle_time"].dump().c_str());
+    std::fflush(stdout);
+    const auto t0 = std::chrono::steady_clock::now();
+    heap = sm::settle_heap<double>(scene, registry, "bench", opt.workflow);
+    std::printf("heap: %zu spheres settled in %.0f s\n", heap.size(),
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    if (!opt.save_heap.empty()) {
+      sm::engine::write_vtp(opt.save_heap, heap, 0.0);
+      std::printf("heap: written to %s (reuse it with --heap)\n", opt.save_heap.c_str());
+    }
+  }
+  if (heap.size() != scene["powder"]["count"].get<std::size_t>())
+    std::printf("warning: the heap has %zu spheres, the scene asks for %s\n", heap.size(),
+                scene["powder"]["count"].dump().c_str());
+
+  // --skip: one untimed run to the starting point, kept as a checkpoint every repeat resumes from.
+  const fs::path checkpoint = fs::temp_directory_path() / ("bench_peer_scene_" + std::to_string(::getpid()) + ".bin");
+  if (opt.skip > 0) {
+    omp_set_num_threads(std::min(2, omp_get_num_procs()));
+    auto run = sm::make_spreading_run<double>(scene, registry, heap, opt.workflow);
+    run->sim.run_steps(opt.skip);
+    run->sim.save_checkpoint(checkpoint);
+  }
+
+  const double dt = scene["time"]["step"];
+  std::printf("bench_peer_scene: the peers' spreading scene (%s), double precision, dt = %.3g s, omega = %g rad/s\n",
+              opt.workflow.filename().c_str(), dt, opt.omega);
+  std::printf("machine: %s, %u hardware threads (OpenMP sees %d processors); load average at start %s\n",
+              first_line_of("/proc/cpuinfo", "model name").c_str(), std::thread::hardware_concurrency(),
+              omp_get_num_procs(), load_average().c_str());
+  std::printf("timed: %llu spreading steps from t = %.4g s (roller x = %.2f mm), %d repeats per thread count, "
+              "interleaved\n",
+              static_cast<unsigned long long>(opt.steps), opt.skip * dt,
+              1e3 * (scene["spreader"]["params"]["start"].get<double>() +
+                     scene["spreader"]["params"]["U"].get<double>() * opt.skip * dt),
+              opt.repeats);
+  std::fflush(stdout);
+
+  std::vector<std::vector<Timing>> timings(opt.threads.size());
+  for (int r = 0; r < opt.repeats; ++r) {
+    for (std::size_t k = 0; k < opt.threads.size(); ++k) {
+      omp_set_num_threads(opt.threads[k]);
+      auto run = sm::make_spreading_run<double>(scene, registry, heap, opt.workflow);
+      auto &sim = run->sim;
+      if (opt.skip > 0) sim.load_checkpoint(checkpoint);
+      const auto before = sim.counters();
+      const auto t0 = std::chrono::steady_clock::now();
+      sim.run_steps(opt.steps);
+      const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const auto &after = sim.counters();
+      Timing t{(after.particle_steps - before.particle_steps) / wall,
+               double(sim.list_entries()) / double(std::max<std::size_t>(1, sim.size())),
+               after.list_builds - before.list_builds, sim.removed_count(), sim.size(), state_by_id(sim.state())};
+      std::printf("  repeat %d, %d thread%s: %.3e particle-steps/s (%.1f ns per particle-step), %llu list builds, "
+                  "%.2f neighbours per particle (full list), %zu particles at the end\n",
+                  r + 1, opt.threads[k], opt.threads[k] > 1 ? "s" : " ", t.particle_steps_per_second,
+                  1e9 / t.particle_steps_per_second, static_cast<unsigned long long>(t.list_builds), t.neighbours,
+                  t.particles_end);
+      std::fflush(stdout);
+      timings[k].push_back(std::move(t));
+    }
+  }
+  std::error_code ec;
+  fs::remove(checkpoint, ec);
+
+  bool identical = true;
+  const auto &reference = timings[0][0].end_state;
+  for (const auto &per_threads : timings)
+    for (const auto &t : per_threads)
+      identical = identical && t.end_state.size() == reference.size() &&
+                  std::memcmp(t.end_state.data(), reference.data(), reference.size() * sizeof(double)) == 0;
+
+  std::printf("\nload average at the end %s\n", load_average().c_str());
+  std::printf("end states of all %d runs bitwise identical (any thread count): %s\n",
+              int(opt.threads.size()) * opt.repeats, identical ? "yes" : "NO");
+  std::printf("\n%-28s %16s %12s %12s\n", "", "particle-steps/s", "speed-up", "x LIGGGHTS");
+  std::vector<double> med(opt.threads.size());
+  for (std::size_t k = 0; k < opt.threads.size(); ++k) {
+    std::vector<double> v;
+    for (const auto &t : timings[k]) v.push_back(t.particle_steps_per_second);
+    med[k] = median(v);
+  }
+  for (std::size_t k = 0; k < opt.threads.size(); ++k) {
+    const std::string name = "spreadmap, " + std::to_string(opt.threads[k]) + " thread" + (opt.threads[k] > 1 ? "s" : "");
+    std::printf("%-28s %16.3e %12.2f %12.2f   (median of %d)\n", name.c_str(), med[k], med[k] / med[0],
+                med[k] / opt.liggghts, opt.repeats);
+  }
+  std::printf("%-28s %16.3e %12s %12.2f   %s\n", "LIGGGHTS 3.8, 1 process", opt.liggghts, "", 1.0,
+              opt.liggghts_label.c_str());
+
+  // The targets: >= 3x LIGGGHTS' serial figure on one thread, >= 1.6x from 1 to 2 threads.
+  for (std::size_t k = 0; k < opt.threads.size(); ++k) {
+    if (opt.threads[k] == 1)
+      std::printf("target 1 thread >= 3x LIGGGHTS serial: %.2fx -> %s\n", med[k] / opt.liggghts,
+                  med[k] >= 3 * opt.liggghts ? "met" : "NOT met");
+    if (opt.threads[k] == 2 && opt.threads[0] == 1)
+      std::printf("target speed-up 1 -> 2 threads >= 1.6: %.2f -> %s\n", med[k] / med[0],
+                  med[k] >= 1.6 * med[0] ? "met" : "NOT met");
+  }
+  return identical ? 0 : 1;
+}

@@ -1,0 +1,29 @@
+#include "cluster/heap_order.hpp"
+
+#include <filesystem>
+#include <set>
+
+namespace spreadmap::cluster {
+
+std::string heap_key(const CaseJob &job) { return heap_hash(job.request.scene); }
+
+// The file name case_runner.cpp gives a settled heap. Were it ever to change, a case would only
+// wait for its heap's first case needlessly; nothing would be computed wrongly.
+bool heap_ready(const CaseJob &job) {
+  std::error_code ec;
+  return std::filesystem::exists(job.request.heaps / ("heap_" + heap_key(job) + ".vtp"), ec);
+}
+
+HeapOrder order_by_heap(const std::vector<CaseJob> &jobs) {
+  HeapOrder order;
+  std::set<std::string> settling;
+  for (const auto &job : jobs) {
+    if (!heap_ready(job) && settling.insert(heap_key(job)).second)
+      order.first.push_back(job.index);
+    else
+      order.rest.push_back(job.index);
+  }
+  return order;
+}
+
+}  // namespace spreadmap::cluster

@@ -1,0 +1,22 @@
+// One case run to completion in the calling thread, and its layer measured: the building blocks of
+// the stages that decide their next case from the last result (adaptive design, trade study).
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "workflow/case_runner.hpp"
+#include "workflow/layer_eval.hpp"
+#include "workflow/stage.hpp"
+
+namespace spreadmap {
+
+// Runs the case unless its folder already holds a finished result for the same inputs (or
+// --force), records it in the manifest's case list and draws its snapshot. Returns case.json.
+// `ran` tells whether it was simulated now. Throws Interrupted after SIGINT/SIGTERM.
+nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool render, bool &ran);
+
+// The layer metrics of a finished case over the scene's default sampling region, with the
+// metrics plugin's default parameters.
+LayerResult measure_case_layer(PluginRegistry &registry, const nlohmann::json &scene, const fs::path &dir);
+
+}  // namespace spreadmap

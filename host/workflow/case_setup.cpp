@@ -1,0 +1,160 @@
+#include "workflow/case_setup.hpp"
+
+#include <spdlog/spdlog.h>
+#include <spreadmap/contact.hpp>
+#include <spreadmap/geometry.hpp>
+
+#include <cmath>
+
+#include "core/error.hpp"
+#include "core/stop.hpp"
+#include "scene/heap.hpp"
+
+namespace spreadmap {
+
+using engine::ParticleSet;
+
+CasePlugins::CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const nlohmann::json &spreader_params,
+                         const fs::path &scene_file) {
+  const auto &law = reg.get("contact", scene["contact"]["use"].get<std::string>());
+  const auto &geo = reg.get("spreader", scene["spreader"]["use"].get<std::string>());
+  const std::string at = scene_file.string() + ": ";
+  pair = PluginInstance(law, scene["contact"]["params"].dump(), at + "scene.contact");
+  substrate = PluginInstance(law, scene["substrate"]["law"].dump(), at + "scene.substrate");
+  spreader_law = PluginInstance(law, scene["spreader"]["law"].dump(), at + "scene.spreader");
+  spreader = PluginInstance(geo, spreader_params.dump(), at + "scene.spreader");
+}
+
+engine::ContactLaw CasePlugins::law(const PluginInstance &i) const { return {i.ops<sm_contact_ops_v1>(), i.get()}; }
+
+engine::Domain make_domain(const nlohmann::json &scene) {
+  const auto &d = scene["domain"];
+  engine::Domain dom;
+  dom.lo = {0, 0, 0};
+  dom.hi = {d["length"].get<double>(), d["width"].get<double>(), d["height"].get<double>()};
+  dom.periodic = {d["periodic_x"].get<bool>(), d["periodic_y"].get<bool>(), false};
+  return dom;
+}
+
+engine::Settings make_settings(const nlohmann::json &scene, double dt) {
+  engine::Settings s;
+  const auto &t = scene["time"];
+  s.dt = dt;
+  s.dt_safety = t["safety"];
+  s.skin = t["skin"];
+  s.overlap_limit = t["overlap_limit"];
+  s.gravity = {0, 0, -scene["gravity"].get<double>()};
+  s.log = [](const std::string &m) { spdlog::debug("{}", m); };
+  return s;
+}
+
+namespace {
+scene::SizeDistribution make_sizes(const nlohmann::json &powder) {
+  const std::string kind = powder["distribution"];
+  if (kind == "lognormal") return scene::SizeDistribution::lognormal(powder["d50"], powder["sigma"]);
+  if (kind == "table") {
+    std::vector<double> d, f;
+    if (!powder["table"].is_array())
+      throw InputError("error: scene.powder.table: a table distribution needs table: [{diameter: 250 um, fraction: 0.5}, ...]");
+    for (const auto &row : powder["table"]) {
+      d.push_back(row.at("diameter").is_number() ? row.at("diameter").get<double>() : 0.0);
+      f.push_back(row.at("fraction").is_number() ? row.at("fraction").get<double>() : 0.0);
+    }
+    return scene::SizeDistribution::table(d, f);
+  }
+  return scene::SizeDistribution::monodisperse(powder["diameter"]);
+}
+}  // namespace
+
+template <class Real>
+ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const std::string &label,
+                        const fs::path &scene_file, const std::function<void(double)> &progress) {
+  const auto &powder = scene["powder"];
+  const auto dom = make_domain(scene);
+  nlohmann::json resting = scene["spreader"]["params"];
+  resting["travel"] = 0.0;
+  resting["end"] = 0.0;
+  resting["omega"] = 0.0;
+  CasePlugins plugins(scene, reg, resting, scene_file);
+  sm_pose_v1 pose{};
+  plugins.spreader.ops<sm_geometry_ops_v1>()->pose(plugins.spreader.get(), 0.0, &pose);
+
+  scene::HeapSpec spec;
+  const auto sizes = make_sizes(powder);
+  const double dmax = sizes.upper();
+  const double top = powder["heap_top"].get<double>() > 0 ? powder["heap_top"].get<double>() : dom.hi[2] - dmax;
+  spec.region = {{powder["heap_from"].get<double>(), dom.lo[1], 0.0}, {powder["heap_to"].get<double>(), dom.hi[1], top}};
+  spec.periodic_y = dom.periodic[1];
+  spec.sizes = sizes;
+  spec.seed = powder["seed"].get<std::uint64_t>();
+  if (powder["volume"].get<double>() > 0) spec.solid_volume = powder["volume"];
+  else spec.count = powder["count"].get<std::size_t>();
+  spec.max_top = dom.hi[2] - 0.5 * dmax;
+  if (std::string(pose.shape) == "cylinder")
+    spec.excluded_cylinders.push_back({pose.centre[0], pose.centre[2], pose.radius + 0.05 * dmax});
+  else
+    spec.excluded_boxes.push_back({{pose.centre[0] - 0.5 * pose.thickness - 0.05 * dmax, -1e9, pose.centre[2]},
+                                   {pose.centre[0] + 0.5 * pose.thickness + 0.05 * dmax, 1e9, 1e9}});
+  const scene::Heap heap = scene::insert_heap(spec);
+  spdlog::info("{}: heap of {} spheres inserted (top {:.2f} mm), settling {:.3g} s", label, heap.size(), heap.top * 1e3,
+               powder["settle_time"].get<double>());
+
+  engine::Simulation<Real> sim(dom, plugins.law(plugins.pair), make_settings(scene, scene["time"]["step"]));
+  ParticleSet set;
+  set.x = heap.x; set.y = heap.y; set.z = heap.z;
+  set.radius = heap.r;
+  sim.add_particles(set, powder["density"]);
+  sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, plugins.law(plugins.substrate), true, "substrate"});
+  sim.add_plane_wall({{spec.region.lo[0], 0, 0}, {1, 0, 0}, {0, 0, 0}, plugins.law(plugins.spreader_law), true, "heap back wall"});
+  sim.add_plane_wall({{spec.region.hi[0], 0, 0}, {-1, 0, 0}, {0, 0, 0}, plugins.law(plugins.spreader_law), true, "heap front wall"});
+  sim.add_geometry({plugins.spreader.ops<sm_geometry_ops_v1>(), plugins.spreader.get(), plugins.law(plugins.spreader_law),
+                    "spreader/" + scene["spreader"]["use"].get<std::string>()});
+  const double t_settle = powder["settle_time"], v_rest = powder["settle_speed"];
+  const double min_time = 0.3 * t_settle;
+  sim.run_until(t_settle, [&](const engine::Simulation<Real> &s) {
+    if (stop_requested()) return false;
+    if (progress) progress(s.time() / t_settle);
+    if (s.time() < min_time) return true;
+    const auto &a = s.arrays();
+    Real vmax2 = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) vmax2 = std::max(vmax2, a.vx[i] * a.vx[i] + a.vy[i] * a.vy[i] + a.vz[i] * a.vz[i]);
+    return std::sqrt(double(vmax2)) > v_rest;
+  }, 200);
+  if (stop_requested()) throw Interrupted("interrupted while settling the heap of " + label + ": run the same command again to resume");
+  auto state = sim.state();
+  spdlog::info("{}: heap settled after {:.3g} s ({} steps, {} removed)", label, sim.time(), sim.step_count(), sim.removed_count());
+  return state;
+}
+
+template <class Real> const sm_geometry_ops_v1 *SpreadingRun<Real>::spreader_ops() const {
+  return plugins.spreader.template ops<sm_geometry_ops_v1>();
+}
+
+template <class Real>
+std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &scene, PluginRegistry &reg,
+                                                       const ParticleSet &heap, const fs::path &scene_file) {
+  CasePlugins plugins(scene, reg, scene["spreader"]["params"], scene_file);
+  const engine::ContactLaw pair = plugins.law(plugins.pair);
+  auto run = std::unique_ptr<SpreadingRun<Real>>(new SpreadingRun<Real>{
+      std::move(plugins), engine::Simulation<Real>(make_domain(scene), pair, make_settings(scene, scene["time"]["step"]))});
+  auto &sim = run->sim;
+  const auto &p = run->plugins;
+  sim.add_particles(heap, scene["powder"]["density"]);
+  sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, p.law(p.substrate), true, "substrate"});
+  sim.add_geometry({run->spreader_ops(), p.spreader.get(), p.law(p.spreader_law),
+                    "spreader/" + scene["spreader"]["use"].get<std::string>()});
+  return run;
+}
+
+template ParticleSet settle_heap<double>(const nlohmann::json &, PluginRegistry &, const std::string &, const fs::path &,
+                                         const std::function<void(double)> &);
+template ParticleSet settle_heap<float>(const nlohmann::json &, PluginRegistry &, const std::string &, const fs::path &,
+                                        const std::function<void(double)> &);
+template struct SpreadingRun<double>;
+template struct SpreadingRun<float>;
+template std::unique_ptr<SpreadingRun<double>> make_spreading_run<double>(const nlohmann::json &, PluginRegistry &,
+                                                                          const ParticleSet &, const fs::path &);
+template std::unique_ptr<SpreadingRun<float>> make_spreading_run<float>(const nlohmann::json &, PluginRegistry &,
+                                                                        const ParticleSet &, const fs::path &);
+
+}  // namespace spreadmap

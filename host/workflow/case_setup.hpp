@@ -1,0 +1,51 @@
+// How a case's simulations are built from its resolved scene (SI JSON, see scene.hpp): the bound
+// plugins, the domain, the engine settings, the settled heap and the spreading run's Simulation
+// (heap + substrate plane + spreader geometry). The case runner and the peer-scene benchmark
+// (bench/peer_scene_bench.cpp) both build through here, so the benchmark times exactly what the
+// simulate stage runs.
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "core/registry.hpp"
+#include "engine/simulation.hpp"
+
+namespace spreadmap {
+
+namespace fs = std::filesystem;
+
+// The bound plugin instances of a case: the contact law three times (particle-particle,
+// -substrate, -spreader) and the spreader geometry.
+struct CasePlugins {
+  PluginInstance pair, substrate, spreader_law, spreader;
+  // `scene_file`: the case's resolved scene (cases/cNNN/scene.json), named in a plugin's refusal.
+  CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const nlohmann::json &spreader_params,
+              const fs::path &scene_file);
+  engine::ContactLaw law(const PluginInstance &i) const;
+};
+
+engine::Domain make_domain(const nlohmann::json &scene);
+engine::Settings make_settings(const nlohmann::json &scene, double dt);
+
+// Particles inserted in front of (and under) the spreader and settled under gravity between two
+// temporary walls, with the spreader at rest at its start. `label` names the case in the log;
+// `progress` gets the fraction of the settling time done. Throws Interrupted on SIGINT/SIGTERM.
+template <class Real>
+engine::ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const std::string &label,
+                                const fs::path &scene_file, const std::function<void(double)> &progress = {});
+
+// The spreading run: the heap, the substrate plane z = 0 and the moving spreader. The plugins are
+// kept beside the Simulation, which points into them.
+template <class Real> struct SpreadingRun {
+  CasePlugins plugins;
+  engine::Simulation<Real> sim;
+  const sm_geometry_ops_v1 *spreader_ops() const;
+};
+template <class Real>
+std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &scene, PluginRegistry &reg,
+                                                       const engine::ParticleSet &heap, const fs::path &scene_file);
+
+}  // namespace spreadmap

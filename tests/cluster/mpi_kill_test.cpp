@@ -1,0 +1,111 @@
+// A rank killed midway (SIGKILL: a node lost): mpirun ends the job; the same command then finishes
+// the run, computing only the cases that had no finished result. A finished case keeps its files
+// untouched (same inode and modification time: a rewrite goes through a new file) and its manifest
+// timings, and every case is present exactly once.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <csignal>
+#include <map>
+#include <set>
+#include <thread>
+
+#include "cluster/cluster_support.hpp"
+
+namespace fs = std::filesystem;
+namespace t = spreadmap::test;
+
+namespace {
+
+// The pid of MPI rank `rank` of the run writing to `out`, or -1.
+pid_t rank_pid(int rank, const fs::path &out) {
+  const std::string want = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
+  for (const auto &e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    std::string cmdline = t::slurp(e.path() / "cmdline"), environ = t::slurp(e.path() / "environ");
+    for (auto &c : cmdline) c = c == '\0' ? ' ' : c;
+    if (!t::contains(cmdline, out.string())) continue;
+    std::size_t at = 0;
+    for (std::size_t end; (end = environ.find('\0', at)) != std::string::npos; at = end + 1)
+      if (environ.compare(at, end - at, want) == 0) return std::stoi(name);
+  }
+  return -1;
+}
+
+std::map<std::string, t::FileId> files_below(const fs::path &dir) {
+  std::map<std::string, t::FileId> out;
+  for (const auto &e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) out[fs::relative(e.path(), dir).string()] = t::identify(e.path());
+  return out;
+}
+
+}  // namespace
+
+TEST(MpiKill, TheRerunComputesOnlyTheCasesTheKilledJobLeftUnfinished) {
+  t::Scratch scratch("mpi_kill");
+  const fs::path run = scratch.dir / "run";
+  const std::vector<std::string> args = {"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "mpi"};
+
+  // 1. three ranks (two workers); once the first case is done, kill worker rank 1
+  t::Outcome first;
+  {
+    t::Child job(t::under_mpirun(3, args));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(4);
+    while (job.running() && !t::finished(run / "cases/c000") && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    ASSERT_TRUE(job.running()) << "the job ended before a rank could be killed:\n" << job.wait().describe();
+    const pid_t victim = rank_pid(1, run);
+    ASSERT_GT(victim, 0) << "rank 1 not found";
+    ASSERT_EQ(::kill(victim, SIGKILL), 0);
+    first = job.wait();
+  }
+  EXPECT_FALSE(first.exited && first.exit_code == 0) << "mpirun must report the lost rank:\n" << first.describe();
+
+  std::vector<std::string> done, todo;
+  for (int i = 0; i < t::mini_cases; ++i) (t::finished(run / "cases" / t::case_id(i)) ? done : todo).push_back(t::case_id(i));
+  ASSERT_GE(done.size(), 1u);
+  ASSERT_GE(todo.size(), 1u) << "every case finished before the kill: the test proves nothing";
+  for (const auto &id : todo) EXPECT_FALSE(fs::exists(run / "cases" / id / "case.json")) << id << ": a half result";
+
+  std::map<std::string, t::FileId> kept;
+  std::map<std::string, nlohmann::json> recorded;  // manifest entries of finished cases rank 0 had recorded
+  const auto before = t::manifest(run);
+  for (const auto &id : done) {
+    for (const char *f : {"case.json", "state.vtp", "scene.json"}) kept[id + "/" + f] = t::identify(run / "cases" / id / f);
+    for (const auto &c : before.at("cases"))
+      if (c.at("id") == id && c.value("status", "") == "done") recorded[id] = c;
+  }
+  const auto heaps = files_below(run / "heaps");
+
+  // 2. the same command, on two ranks: only the unfinished cases run
+  const t::Outcome second = t::run(t::under_mpirun(2, args));
+  ASSERT_EQ(second.exit_code, 0) << second.describe();
+  EXPECT_TRUE(t::contains(second.err, "4 cases, " + std::to_string(todo.size()) + " to run, " +
+                                          std::to_string(done.size()) + " finished already"))
+      << second.err;
+  for (const auto &id : done) EXPECT_FALSE(t::contains(second.err, id + " done")) << id << " was recomputed";
+  for (const auto &[file, id] : kept) EXPECT_EQ(t::identify(run / "cases" / file), id) << file << " was rewritten";
+  EXPECT_EQ(files_below(run / "heaps"), heaps) << "the settled heap was recomputed";
+
+  // every case present once, finished, recorded once; the old records kept
+  const auto after = t::manifest(run);
+  std::multiset<std::string> ids;
+  for (const auto &c : after.at("cases")) {
+    ids.insert(c.at("id").get<std::string>());
+    EXPECT_EQ(c.value("status", ""), "done") << c.dump();
+  }
+  EXPECT_EQ(ids, (std::multiset<std::string>{"c000", "c001", "c002", "c003"}));
+  for (const auto &[id, entry] : recorded)
+    for (const auto &c : after.at("cases"))
+      if (c.at("id") == id) {
+        EXPECT_EQ(c.value("start", ""), entry.value("start", "")) << id;
+        EXPECT_EQ(c.value("end", ""), entry.value("end", "")) << id;
+      }
+  for (int i = 0; i < t::mini_cases; ++i) {
+    EXPECT_TRUE(t::finished(run / "cases" / t::case_id(i))) << i;
+    EXPECT_FALSE(fs::exists(run / "cases" / t::case_id(i) / "checkpoint.bin")) << i;
+  }
+  const std::string csv = t::slurp(run / "metrics.csv");
+  for (int i = 0; i < t::mini_cases; ++i) EXPECT_EQ(t::count(csv, "\n" + t::case_id(i) + ","), 1u) << csv;
+}

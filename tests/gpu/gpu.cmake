@@ -1,0 +1,10 @@
+# Backend comparisons that need a CUDA device (label gpu: CI leaves it out when no GPU is present and
+# says so). Built only with CUDA; each test skips, saying why, on a machine without a usable device.
+if(NOT SPREADMAP_WITH_CUDA)
+  return()
+endif()
+spreadmap_test(gpu contact_backends
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/contact_backends_test.cpp
+  LIBS spreadmap_cuda)
+add_dependencies(test_gpu_contact_backends plugin_contact_hooke_slider plugin_contact_hooke_history
+                 plugin_contact_hertz_mindlin plugin_spreader_roller plugin_spreader_blade)

@@ -1,0 +1,53 @@
+// Diagnostics: one shape for every user-facing error, "error: FILE:LINE:COL: key.path: what" with a
+// 1-based line and column (yaml-cpp's marks are 0-based), and an indented hint line.
+#include <gtest/gtest.h>
+
+#include "core/diagnostics.hpp"
+#include "core/error.hpp"
+
+namespace sm = spreadmap;
+
+TEST(CoreDiagnostics, LocationsAreOneBased) {
+  const YAML::Node root = YAML::Load("version: 1\nscene:\n  powder: {diameter: 250 um}\n");
+  const auto at_root = sm::Location::of("wf.yaml", root);
+  EXPECT_EQ(at_root.line, 1);
+  EXPECT_EQ(at_root.column, 1);
+  const auto at_value = sm::Location::of("wf.yaml", root["scene"]["powder"]["diameter"]);
+  EXPECT_EQ(at_value.line, 3);
+  EXPECT_EQ(at_value.column, 22);
+  EXPECT_EQ(at_value.str(), "wf.yaml:3:22");
+}
+
+TEST(CoreDiagnostics, UnknownPositionPrintsTheFileOnly) {
+  const sm::Location none{"wf.yaml"};
+  EXPECT_EQ(none.str(), "wf.yaml");
+  const YAML::Node root = YAML::Load("a: 1");
+  const auto missing = sm::Location::of("wf.yaml", root["nothing"]);
+  EXPECT_EQ(missing.line, 0);
+  EXPECT_EQ(missing.str(), "wf.yaml");
+}
+
+TEST(CoreDiagnostics, MessageShape) {
+  sm::Diagnostics diag;
+  EXPECT_TRUE(diag.empty());
+  EXPECT_NO_THROW(diag.throw_if_any());
+  diag.error({"wf.yaml", 4, 7}, "scene.powder.diameter", "outside [1e-06, 0.1] m", "diameter: sphere diameter");
+  diag.error({"wf.yaml", 2, 1}, "", "a workflow is a YAML mapping");
+  ASSERT_EQ(diag.errors().size(), 2u);
+  EXPECT_EQ(diag.errors()[0], "error: wf.yaml:4:7: scene.powder.diameter: outside [1e-06, 0.1] m\n  diameter: sphere diameter");
+  EXPECT_EQ(diag.errors()[1], "error: wf.yaml:2:1: a workflow is a YAML mapping");
+  try {
+    diag.throw_if_any();
+    FAIL() << "no error";
+  } catch (const sm::InputError &e) {
+    EXPECT_EQ(std::string(e.what()), diag.errors()[0] + "\n" + diag.errors()[1]);
+    EXPECT_EQ(e.exit_code, 2);
+  }
+}
+
+TEST(CoreDiagnostics, ExitCodesAreDistinct) {
+  EXPECT_EQ(sm::InputError("x").exit_code, 2);
+  EXPECT_EQ(sm::PluginError("x").exit_code, 3);
+  EXPECT_EQ(sm::RunFailure("x").exit_code, 1);
+  EXPECT_EQ(sm::Interrupted("x").exit_code, 130);
+}

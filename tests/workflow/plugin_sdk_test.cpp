@@ -1,0 +1,85 @@
+// The out-of-tree plugin: `cmake --install` of this build into a fresh prefix, then the sample in
+// tests/plugin_sdk/ configured with find_package(spreadmap) against that prefix only, built, and
+// loaded by the installed binary through SPREADMAP_PLUGIN_PATH, which must list its schema. The
+// installed binary must also find the installed in-tree plugins without any variable.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "workflow/process.hpp"
+
+namespace fs = std::filesystem;
+namespace t = spreadmap::test;
+
+namespace {
+
+bool contains(const std::string &text, const std::string &part) { return text.find(part) != std::string::npos; }
+
+t::Outcome cmake(std::vector<std::string> args) {
+  // a clean environment for the nested build: no flags or prefixes from the outer one
+  return t::run({std::move(args), SPREADMAP_CMAKE_COMMAND, {{"CXXFLAGS", ""}, {"LDFLAGS", ""}, {"CMAKE_PREFIX_PATH", ""}}, {}});
+}
+
+}  // namespace
+
+TEST(OutOfTreePlugin, BuildsAgainstTheInstalledSdkAndLoads) {
+  const fs::path work = fs::temp_directory_path() / ("spreadmap_sdk_" + std::to_string(::getpid()));
+  const fs::path prefix = work / "prefix", build = work / "build";
+  fs::remove_all(work);
+
+  const auto install = cmake({"--install", SPREADMAP_BINARY_DIR, "--prefix", prefix.string()});
+  ASSERT_EQ(install.exit_code, 0) << install.describe();
+  for (const char *f : {"bin/spreadmap", "include/spreadmap/abi.h", "include/spreadmap/contact.hpp",
+                        "lib/cmake/spreadmap/spreadmapConfig.cmake", "lib/cmake/spreadmap/spreadmapConfigVersion.cmake",
+                        "lib/cmake/spreadmap/spreadmapTargets.cmake", "lib/cmake/spreadmap/SpreadmapPlugin.cmake",
+                        "lib/spreadmap/plugins/contact/hooke_slider.so", "lib/spreadmap/plugins/spreader/roller.so"})
+    EXPECT_TRUE(fs::exists(prefix / f)) << f << " is not installed";
+
+  const auto configure = cmake({"-S", SPREADMAP_SOURCE_DIR "/tests/plugin_sdk", "-B", build.string(),
+                                "-DCMAKE_PREFIX_PATH=" + prefix.string(), "-DCMAKE_BUILD_TYPE=Release",
+                                "-DCMAKE_CXX_COMPILER=" SPREADMAP_CXX_COMPILER});
+  ASSERT_EQ(configure.exit_code, 0) << configure.describe();
+  const auto compile = cmake({"--build", build.string(), "-j", "2"});
+  ASSERT_EQ(compile.exit_code, 0) << compile.describe();
+  const fs::path plugins = build / "lib" / "spreadmap" / "plugins";
+  const fs::path library = plugins / "contact" / "soft_spring.so";
+  ASSERT_TRUE(fs::exists(library));
+
+  const fs::path installed = prefix / "bin" / "spreadmap";
+  const std::map<std::string, std::string> env = {{"SPREADMAP_PLUGIN_PATH", plugins.string()}};
+  const auto schema = t::run({{"plugins", "soft_spring"}, installed, env, {}});
+  ASSERT_EQ(schema.exit_code, 0) << schema.describe();
+  EXPECT_TRUE(contains(schema.out, "contact/soft_spring 0.1.0")) << schema.out;
+  for (const char *key : {"stiffness", "damping_ratio", "N/m"}) EXPECT_TRUE(contains(schema.out, key)) << schema.out;
+  EXPECT_TRUE(contains(schema.out, "file: " + library.string())) << schema.out;
+
+  const auto json = t::run({{"plugins", "--kind", "contact", "--format", "json"}, installed, env, {}});
+  ASSERT_EQ(json.exit_code, 0) << json.describe();
+  bool found = false;
+  for (const auto &p : nlohmann::json::parse(json.out))
+    if (p.at("name") == "soft_spring") {
+      found = true;
+      ASSERT_EQ(p.at("params").size(), 2u);
+      EXPECT_EQ(p.at("params")[0].at("name"), "stiffness");
+      EXPECT_EQ(p.at("params")[0].at("unit"), "N/m");
+      EXPECT_EQ(p.at("params")[0].at("default").get<double>(), 500.0);
+    } else {
+      // the in-tree laws come from the prefix, found beside the installed binary
+      EXPECT_EQ(p.at("file").get<std::string>().rfind((prefix / "lib/spreadmap/plugins/contact").string(), 0), 0u)
+          << p.at("file");
+    }
+  EXPECT_TRUE(found) << json.out;
+
+  // the sample is a usable contact law: a workflow can select it and validate
+  const fs::path wf = work / "soft.yaml";
+  {
+    std::ofstream(wf) << "version: 1\nname: soft\nscene:\n  preset: quick\n"
+                         "  contact: {use: soft_spring, stiffness: 300 N/m}\n"
+                         "stages:\n  - simulate: {}\n";
+  }
+  const auto validate = t::run({{"validate", wf.string()}, installed, env, {}});
+  EXPECT_EQ(validate.exit_code, 0) << validate.describe();
+  fs::remove_all(work);
+}

@@ -1,0 +1,30 @@
+# The program as users run it: the real binary in child processes (tests/workflow/process.hpp).
+# Catalogue of malformed inputs (data/bad/), the command line, kill-and-resume, and an out-of-tree
+# plugin built against the installed SDK. They need the binary, every plugin and the fixture plugins
+# of tests/unit/core.cmake.
+set(workflow_needs spreadmap ${SPREADMAP_FIXTURE_TARGETS})
+file(GLOB plugin_cmakelists ${PROJECT_SOURCE_DIR}/plugins/*/*/CMakeLists.txt)
+foreach(f IN LISTS plugin_cmakelists)
+  get_filename_component(dir ${f} DIRECTORY)
+  get_filename_component(name ${dir} NAME)
+  get_filename_component(kind_dir ${dir} DIRECTORY)
+  get_filename_component(kind ${kind_dir} NAME)
+  if(TARGET plugin_${kind}_${name})
+    list(APPEND workflow_needs plugin_${kind}_${name})
+  endif()
+endforeach()
+
+function(spreadmap_workflow_test name)
+  cmake_parse_arguments(W "" "TIMEOUT" "SOURCES" ${ARGN})
+  spreadmap_test(workflow ${name} SOURCES ${W_SOURCES} ${CMAKE_CURRENT_LIST_DIR}/process.cpp
+    LIBS spreadmap_sdk TIMEOUT ${W_TIMEOUT})
+  add_dependencies(test_workflow_${name} ${workflow_needs})
+  target_compile_definitions(test_workflow_${name} PRIVATE SPREADMAP_FIXTURE_DIR="${SPREADMAP_FIXTURE_DIR}")
+endfunction()
+
+spreadmap_workflow_test(catalogue SOURCES ${CMAKE_CURRENT_LIST_DIR}/catalogue_test.cpp TIMEOUT 120)
+spreadmap_workflow_test(cli SOURCES ${CMAKE_CURRENT_LIST_DIR}/cli_test.cpp TIMEOUT 120)
+spreadmap_workflow_test(resume SOURCES ${CMAKE_CURRENT_LIST_DIR}/resume_test.cpp TIMEOUT 600)
+spreadmap_workflow_test(plugin_sdk SOURCES ${CMAKE_CURRENT_LIST_DIR}/plugin_sdk_test.cpp TIMEOUT 300)
+target_compile_definitions(test_workflow_plugin_sdk PRIVATE
+  SPREADMAP_CMAKE_COMMAND="${CMAKE_COMMAND}" SPREADMAP_CXX_COMPILER="${CMAKE_CXX_COMPILER}")
