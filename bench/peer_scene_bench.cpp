@@ -30,6 +30,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <time.h>
 #include <unistd.h>
 #include <vector>
 
@@ -110,6 +111,13 @@ std::string load_average() {
   std::string a, b, c;
   in >> a >> b >> c;
   return a + " " + b + " " + c;
+}
+
+// CPU time of the whole process [s]: with one thread, the time it ran, whatever else the machine did.
+double process_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
 double median(std::vector<double> v) {
@@ -205,17 +213,21 @@ int main(int argc, char **argv) {
       if (opt.skip > 0) sim.load_checkpoint(checkpoint);
       const auto before = sim.counters();
       const auto t0 = std::chrono::steady_clock::now();
+      const double cpu0 = process_cpu_seconds();
       sim.run_steps(opt.steps);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const double cpu = process_cpu_seconds() - cpu0;
       const auto &after = sim.counters();
-      Timing t{(after.particle_steps - before.particle_steps) / wall,
+      const double particle_steps = after.particle_steps - before.particle_steps;
+      Timing t{particle_steps / wall,
                double(sim.list_entries()) / double(std::max<std::size_t>(1, sim.size())),
                after.list_builds - before.list_builds, sim.removed_count(), sim.size(), state_by_id(sim.state())};
-      std::printf("  repeat %d, %d thread%s: %.3e particle-steps/s (%.1f ns per particle-step), %llu list builds, "
-                  "%.2f neighbours per particle (full list), %zu particles at the end\n",
+      std::printf("  repeat %d, %d thread%s: %.3e particle-steps/s (%.1f ns per particle-step; CPU time of all "
+                  "threads %.1f ns), %llu list builds, %.2f neighbours per particle (full list), %zu particles at the "
+                  "end\n",
                   r + 1, opt.threads[k], opt.threads[k] > 1 ? "s" : " ", t.particle_steps_per_second,
-                  1e9 / t.particle_steps_per_second, static_cast<unsigned long long>(t.list_builds), t.neighbours,
-                  t.particles_end);
+                  1e9 / t.particle_steps_per_second, 1e9 * cpu / particle_steps,
+                  static_cast<unsigned long long>(t.list_builds), t.neighbours, t.particles_end);
       std::fflush(stdout);
       timings[k].push_back(std::move(t));
     }

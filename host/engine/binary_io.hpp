@@ -43,7 +43,7 @@ class BinaryReader {
     if (n > buf_.size()) fail("an array length larger than the file");
     need(n * sizeof(T));
     v.resize(n);
-    std::memcpy(v.data(), buf_.data() + pos_, n * sizeof(T));
+    if (n > 0) std::memcpy(v.data(), buf_.data() + pos_, n * sizeof(T));  // an empty vector's data() may be null
     pos_ += n * sizeof(T);
   }
   bool at_end() const { return pos_ == buf_.size(); }

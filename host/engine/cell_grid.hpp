@@ -17,14 +17,26 @@ template <class Real> struct CellGrid {
   Real inv_size[3]{1, 1, 1};
   int n[3]{1, 1, 1};
   bool periodic[3]{false, false, false};
+  // Axes from the fastest-varying in the cell index to the slowest: the axis with the most cells is
+  // the slowest, so that neighbouring cells (and the particles sorted by cell) lie close in memory.
+  int order[3]{0, 1, 2};
 
   std::size_t count() const { return std::size_t(n[0]) * n[1] * n[2]; }
   int coord(int axis, Real v) const {
     const int c = static_cast<int>(std::floor((v - origin[axis]) * inv_size[axis]));
     return std::clamp(c, 0, n[axis] - 1);
   }
+  std::size_t index(const int c[3]) const {
+    return (std::size_t(c[order[2]]) * n[order[1]] + c[order[1]]) * n[order[0]] + c[order[0]];
+  }
+  void coords(std::size_t cell, int c[3]) const {
+    c[order[0]] = int(cell % n[order[0]]);
+    c[order[1]] = int((cell / n[order[0]]) % n[order[1]]);
+    c[order[2]] = int(cell / (std::size_t(n[order[0]]) * n[order[1]]));
+  }
   std::uint32_t cell_of(Real x, Real y, Real z) const {
-    return static_cast<std::uint32_t>((std::size_t(coord(2, z)) * n[1] + coord(1, y)) * n[0] + coord(0, x));
+    const int c[3] = {coord(0, x), coord(1, y), coord(2, z)};
+    return static_cast<std::uint32_t>(index(c));
   }
 };
 
@@ -56,6 +68,7 @@ CellGrid<Real> make_cell_grid(const Domain &domain, const double bbox_lo[3], con
     if (cells <= max_cells) break;
     width *= std::cbrt(cells / max_cells) * 1.01;
   }
+  std::stable_sort(g.order, g.order + 3, [&](int a, int b) { return g.n[a] < g.n[b]; });
   return g;
 }
 

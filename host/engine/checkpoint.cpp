@@ -121,6 +121,7 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
       list_.hist.size() != list_.nbr.size() * pair_law_.ops->history)
     r.fail("an inconsistent neighbour list");
   list_.restore_mirror(settings_.pairs_once, pair_law_.ops->history);
+  for (auto &ge : geometries_) ge.near_valid = false;  // searched again at the next evaluation
   forces_zeroed_ = false;
   for (auto &pl : planes_) {
     pl.wall.point = r.value<std::array<double, 3>>();

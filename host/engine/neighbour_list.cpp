@@ -1,5 +1,6 @@
 #include <engine/neighbour_list.hpp>
 #include <spreadmap/contact.hpp>
+#include <spreadmap/team.hpp>
 
 #include <algorithm>
 #ifdef _OPENMP
@@ -36,47 +37,47 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   const Real len[3] = {Real(domain.length(0)), Real(domain.length(1)), Real(domain.length(2))};
   const bool per[3] = {domain.periodic[0], domain.periodic[1], domain.periodic[2]};
 
-#ifdef _OPENMP
-  const int max_threads = omp_get_max_threads();
-#else
-  const int max_threads = 1;
-#endif
+  const int max_threads = max_team_size();
   if (static_cast<int>(thread_nbr_.size()) < max_threads) thread_nbr_.resize(max_threads);
 
 #pragma omp parallel
   {
-#ifdef _OPENMP
-    const int t = omp_get_thread_num(), nt = omp_get_num_threads();
-#else
-    const int t = 0, nt = 1;
-#endif
+    const auto [t, nt] = team_slot();
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     auto &buf = thread_nbr_[t];
     buf.clear();
     struct Range { std::uint32_t begin, end; } ranges[27];
     int n_ranges = 0;
+    std::size_t candidates = 0;
     std::uint32_t current_cell = no_index;
     for (std::size_t i = lo; i < hi; ++i) {
       if (cell[i] != current_cell) {  // particles are sorted by cell: recompute only on a new cell
         current_cell = cell[i];
-        const int cx = int(current_cell % grid.n[0]), cy = int((current_cell / grid.n[0]) % grid.n[1]),
-                  cz = int(current_cell / (std::size_t(grid.n[0]) * grid.n[1]));
+        int cc[3];
+        grid.coords(current_cell, cc);
         int ax[3], ay[3], az[3];
-        const int kx = axis_neighbours(cx, grid.n[0], grid.periodic[0], ax);
-        const int ky = axis_neighbours(cy, grid.n[1], grid.periodic[1], ay);
-        const int kz = axis_neighbours(cz, grid.n[2], grid.periodic[2], az);
+        const int kx = axis_neighbours(cc[0], grid.n[0], grid.periodic[0], ax);
+        const int ky = axis_neighbours(cc[1], grid.n[1], grid.periodic[1], ay);
+        const int kz = axis_neighbours(cc[2], grid.n[2], grid.periodic[2], az);
         n_ranges = 0;
         for (int a = 0; a < kz; ++a)
           for (int b = 0; b < ky; ++b)
             for (int c = 0; c < kx; ++c) {
-              const std::size_t q = (std::size_t(az[a]) * grid.n[1] + ay[b]) * grid.n[0] + ax[c];
+              const int nc[3] = {ax[c], ay[b], az[a]};
+              const std::size_t q = grid.index(nc);
               if (cell_start[q] == cell_start[q + 1]) continue;
               ranges[n_ranges++] = {cell_start[q], cell_start[q + 1]};
             }
         // Ascending cell order, so the neighbours of i come out sorted by index.
         std::sort(ranges, ranges + n_ranges, [](const Range &a, const Range &b) { return a.begin < b.begin; });
+        candidates = 0;
+        for (int q = 0; q < n_ranges; ++q) candidates += ranges[q].end - ranges[q].begin;
       }
       const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i];
+      // Room for every candidate, then written without a branch (a kept neighbour advances the end).
+      const std::size_t first = buf.size();
+      buf.resize(first + candidates);
+      std::uint32_t *out = buf.data() + first;
       std::uint32_t count = 0;
       for (int q = 0; q < n_ranges; ++q) {
         for (std::uint32_t j = ranges[q].begin; j < ranges[q].end; ++j) {
@@ -84,12 +85,11 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
           const Real dy = wrap(yi - p.y[j], len[1], per[1]);
           const Real dz = wrap(zi - p.z[j], len[2], per[2]);
           const Real reach = (ri + p.r[j]) + skin;  // symmetric in i and j: the list is, too
-          if (dx * dx + dy * dy + dz * dz < reach * reach && j != i) {
-            buf.push_back(j);
-            ++count;
-          }
+          out[count] = j;
+          count += (dx * dx + dy * dy + dz * dz < reach * reach) & (j != i) ? 1u : 0u;
         }
       }
+      buf.resize(first + count);
       start[i + 1] = count;
     }
 #pragma omp barrier
@@ -131,7 +131,7 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
   const std::size_t n = start.size() - 1, entries = nbr.size();
   mirror.resize(entries);
   slot.resize(entries);
-  scratch.resize(6 * (2 * entries + 1));
+  scratch.resize(6 * (2 * entries + 1 + n));
   std::fill_n(scratch.begin(), 6, Real(0));
   int missing = 0;
 #pragma omp parallel for schedule(static) reduction(+ : missing)

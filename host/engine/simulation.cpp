@@ -2,6 +2,7 @@
 #include <engine/errors.hpp>
 #include <engine/simulation.hpp>
 #include <engine/stability.hpp>
+#include <spreadmap/team.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -150,7 +151,8 @@ template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wal
     throw SetupError(fmt::format("plane wall '{}': normal ({}, {}, {}) must be a finite non-zero vector", wall.name,
                                  wall.normal[0], wall.normal[1], wall.normal[2]));
   for (auto &c : wall.normal) c /= len;
-  PlaneSlot s{std::move(wall), {}};
+  PlaneSlot s;
+  s.wall = std::move(wall);
   s.slot.history = s.wall.law.ops->history;
   s.slot.resize(p_.size());
   planes_.push_back(std::move(s));
@@ -162,7 +164,8 @@ template <class Real> std::size_t Simulation<Real>::add_geometry(GeometryWall ge
   check_law(geometry.law, "geometry '" + geometry.name + "'");
   if (!geometry.ops || !geometry.ops->contacts_f64 || !geometry.ops->contacts_f32)
     throw SetupError(fmt::format("geometry '{}': no contacts function in its ops table", geometry.name));
-  GeometrySlot s{std::move(geometry), {}};
+  GeometrySlot s;
+  s.geometry = std::move(geometry);
   s.slot.history = s.geometry.law.ops->history;
   s.slot.resize(p_.size());
   geometries_.push_back(std::move(s));
@@ -201,10 +204,10 @@ template <class Real> double Simulation<Real>::critical_dt() const {
   if (n >= 2) {
     for (int a = 0; a < 2; ++a)
       for (int b = a; b < 2; ++b)
-        best = std::min(best, contact_critical_dt(pair_law_, m[a] * m[b] / (m[a] + m[b]), r[a] * r[b] / (r[a] + r[b])));
+        best = std::min(best, packing_critical_dt(pair_law_, m[a] * m[b] / (m[a] + m[b]), r[a] * r[b] / (r[a] + r[b])));
   }
   auto wall = [&](const ContactLaw &law) {
-    for (int a = 0; a < 2; ++a) best = std::min(best, contact_critical_dt(law, m[a], r[a]));
+    for (int a = 0; a < 2; ++a) best = std::min(best, packing_critical_dt(law, m[a], r[a]));
   };
   for (const auto &pl : planes_) wall(pl.wall.law);
   for (const auto &g : geometries_) wall(g.geometry.law);
@@ -221,8 +224,8 @@ template <class Real> void Simulation<Real>::resolve_step() {
   if (settings_.dt > 0) {
     if (settings_.dt > crit && !settings_.allow_unstable_dt)
       throw SetupError(fmt::format("time step dt = {:.6g} s is above the critical step dt_crit = {:.6g} s of this "
-                                   "scene's contacts (velocity-Verlet with damping); use dt <= {:.6g} s, or dt: 0 for "
-                                   "the automatic {:.3g} x dt_crit = {:.6g} s",
+                                   "scene's contacts (velocity-Verlet with damping, in the densest packing); use "
+                                   "dt <= {:.6g} s, or dt: 0 for the automatic {:.3g} x dt_crit = {:.6g} s",
                                    settings_.dt, crit, crit, settings_.dt_safety, settings_.dt_safety * crit));
     dt_ = settings_.dt;
   } else {
@@ -321,13 +324,21 @@ template <class Real> void Simulation<Real>::rebuild_list() {
   bool identity = true;
   for (std::size_t i = 0; i < n && identity; ++i) identity = perm_[i] == i;
   if (!identity) {
-    p_.for_each_real([&](std::vector<Real> &c) { gather(c, perm_, scratch_real_); });
+    // Reference positions are set below; cleared accumulators are all zero: neither needs moving.
+    const bool zero_forces = forces_zeroed_;
+    p_.for_each_real([&](std::vector<Real> &c) {
+      if (&c == &p_.x0 || &c == &p_.y0 || &c == &p_.z0) return;
+      if (zero_forces && (&c == &p_.fx || &c == &p_.fy || &c == &p_.fz || &c == &p_.tx || &c == &p_.ty || &c == &p_.tz))
+        return;
+      gather(c, perm_, scratch_real_);
+    });
     p_.for_each_index([&](std::vector<std::uint32_t> &c) { gather(c, perm_, scratch_index_); });
     for_each_wall_slot([&](WallSlot &s) {
       if (s.history) gather(s.hist, perm_, scratch_real_, s.history);
     });
   }
   list_.build(p_, grid, cell_start_, cell_sorted_, domain_, Real(skin_), pair_law_.ops->history, settings_.pairs_once);
+  for (auto &ge : geometries_) find_near_geometry(ge);
 #pragma omp parallel for schedule(static)
   for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
@@ -358,27 +369,44 @@ template <class Real> Particles<Real> Simulation<Real>::view() {
   return v;
 }
 
-template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane, std::uint32_t &touching) {
+// The plane's overlap with every particle (kept for the overlap check) and the particles its law
+// must see: those touching it and those still holding history from an earlier contact (the law
+// clears it), in increasing order.
+template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
   const Real px = Real(plane.wall.point[0]), py = Real(plane.wall.point[1]), pz = Real(plane.wall.point[2]);
   const Real nx = Real(plane.wall.normal[0]), ny = Real(plane.wall.normal[1]), nz = Real(plane.wall.normal[2]);
-  const Real vx = Real(plane.wall.velocity[0]), vy = Real(plane.wall.velocity[1]), vz = Real(plane.wall.velocity[2]);
   WallSlot &s = plane.slot;
-  std::uint32_t count = 0;
-  const long long n = static_cast<long long>(p_.size());
-#pragma omp parallel for schedule(static) reduction(+ : count)
-  for (long long ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    const Real overlap = p_.r[i] - ((p_.x[i] - px) * nx + (p_.y[i] - py) * ny + (p_.z[i] - pz) * nz);
-    if (overlap > 0) {
-      s.overlap[i] = overlap;
-      s.nx[i] = nx; s.ny[i] = ny; s.nz[i] = nz;
-      s.vx[i] = vx; s.vy[i] = vy; s.vz[i] = vz;
-      ++count;
-    } else {
-      s.overlap[i] = 0;
+  const unsigned history = s.history;
+  const std::size_t n = p_.size();
+  const int max_threads = max_team_size();
+  if (thread_index_.size() < std::size_t(max_threads)) thread_index_.resize(max_threads);
+  int teams = 1;
+#pragma omp parallel
+  {
+    const auto [t, nt] = team_slot();
+    if (t == 0) teams = nt;
+    auto &mine = thread_index_[t];
+    mine.clear();
+    const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    for (std::size_t i = lo; i < hi; ++i) {
+      const Real overlap = p_.r[i] - ((p_.x[i] - px) * nx + (p_.y[i] - py) * ny + (p_.z[i] - pz) * nz);
+      s.overlap[i] = overlap > 0 ? overlap : Real(0);
+      bool held = false;
+      for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
+      if (overlap > 0 || held) mine.push_back(static_cast<std::uint32_t>(i));
     }
   }
-  touching = count;
+  plane.near.clear();
+  for (int t = 0; t < teams; ++t) plane.near.insert(plane.near.end(), thread_index_[t].begin(), thread_index_[t].end());
+}
+
+// One wall's law over a subset of particles gathered beforehand, then the forces added back. A small
+// subset runs on this thread: a team would cost more than the work.
+template <class Real>
+void Simulation<Real>::subset_forces(const ContactLaw &law, const Particles<Real> &sv, WallContacts<Real> &sw) {
+  const SerialScope serial(sw.n < subset_parallel_from);
+  if constexpr (std::is_same_v<Real, double>) law.ops->walls_f64(law.self, &sv, &sw);
+  else law.ops->walls_f32(law.self, &sv, &sw);
 }
 
 template <class Real> void Simulation<Real>::compute_forces() {
@@ -399,107 +427,129 @@ template <class Real> void Simulation<Real>::compute_forces() {
   if constexpr (std::is_same_v<Real, double>) pair_law_.ops->pairs_f64(pair_law_.self, &v, &l);
   else pair_law_.ops->pairs_f32(pair_law_.self, &v, &l);
 
-  auto wall_forces = [&](const ContactLaw &law, WallSlot &s) {
-    const WallContacts<Real> w = s.view(n);
-    if constexpr (std::is_same_v<Real, double>) law.ops->walls_f64(law.self, &v, &w);
-    else law.ops->walls_f32(law.self, &v, &w);
-  };
   for (auto &pl : planes_) {
     if (!pl.wall.active) continue;
-    std::uint32_t touching = 0;
-    plane_contacts(pl, touching);
-    // A wall nobody touches now or touched last time has only zero history: skip the law call.
-    if (touching > 0 || pl.slot.touched) wall_forces(pl.wall.law, pl.slot);
-    pl.slot.touched = touching > 0;
+    plane_contacts(pl);
+    pl.slot.touched = !pl.near.empty();
+    if (pl.near.empty()) continue;
+    subset_.gather(p_, pl.near, pl.slot.hist, pl.slot.history);
+    const Real normal[3] = {Real(pl.wall.normal[0]), Real(pl.wall.normal[1]), Real(pl.wall.normal[2])};
+    const Real velocity[3] = {Real(pl.wall.velocity[0]), Real(pl.wall.velocity[1]), Real(pl.wall.velocity[2])};
+    subset_.plane_records(pl.slot.overlap, normal, velocity);
+    const Particles<Real> sv = subset_.particles(v);
+    WallContacts<Real> sw = subset_.walls();
+    subset_forces(pl.wall.law, sv, sw);
+    subset_.scatter(p_, pl.slot.overlap, pl.slot.hist);
   }
   for (auto &ge : geometries_) {
-    WallContacts<Real> w = ge.slot.view(n);
-    if constexpr (std::is_same_v<Real, double>) ge.geometry.ops->contacts_f64(ge.geometry.self, &v, &w);
-    else ge.geometry.ops->contacts_f32(ge.geometry.self, &v, &w);
-    wall_forces(ge.geometry.law, ge.slot);
+    // searched again when the geometry may have moved by a skin (the search does not change results)
+    if (!ge.near_valid || ge.speed * (time_ - ge.near_since) > skin_) find_near_geometry(ge);
+    geometry_forces(ge, v);
     ge.slot.touched = true;
   }
+}
+
+// The particles that may touch a geometry until it is searched again: those a sphere 3 skins larger
+// touches now. Until the next list build a particle moves at most 1 skin from where it was at the
+// last build (kick_and_drift), so at most 2 from where it was at the search; the geometry is searched
+// again once it may have moved 1 skin (its fastest surface speed x time). A geometry that gives no
+// bound on its speed is evaluated for every particle.
+template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot &ge) {
+  const std::size_t n = p_.size();
+  ge.near.clear();
+  ge.near_valid = false;
+  const auto *ops = ge.geometry.ops;
+  const double speed = ops->max_surface_speed ? ops->max_surface_speed(ge.geometry.self) : inf;
+  if (n == 0 || !(skin_ > 0) || !(speed >= 0 && speed < inf)) return;
+  const Real margin = Real(3 * skin_);
+  inflated_radius_.resize(n);
+#pragma omp parallel for schedule(static)
+  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) inflated_radius_[ii] = p_.r[ii] + margin;
+  Particles<Real> v = view();
+  v.r = inflated_radius_.data();
+  WallContacts<Real> w = ge.slot.view(n);
+  if constexpr (std::is_same_v<Real, double>) ops->contacts_f64(ge.geometry.self, &v, &w);
+  else ops->contacts_f32(ge.geometry.self, &v, &w);
+  for (std::size_t i = 0; i < n; ++i)
+    if (w.overlap[i] > 0) ge.near.push_back(static_cast<std::uint32_t>(i));
+  std::fill(ge.slot.overlap.begin(), ge.slot.overlap.end(), Real(0));
+  if (ge.slot.history) {  // far particles touch nothing: no history (the law cleared it when they left)
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (k < ge.near.size() && ge.near[k] == i) { ++k; continue; }
+      std::fill_n(ge.slot.hist.begin() + i * ge.slot.history, ge.slot.history, Real(0));
+    }
+  }
+  ge.near_valid = true;
+  ge.near_since = time_;
+  ge.speed = speed;
+}
+
+// Contacts and forces of one geometry, over its near particles only when they are known.
+template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot &ge, const Particles<Real> &v) {
+  const auto *ops = ge.geometry.ops;
+  const ContactLaw &law = ge.geometry.law;
+  auto evaluate = [&](const Particles<Real> &pv, WallContacts<Real> &w) {
+    if constexpr (std::is_same_v<Real, double>) {
+      ops->contacts_f64(ge.geometry.self, &pv, &w);
+      law.ops->walls_f64(law.self, &pv, &w);
+    } else {
+      ops->contacts_f32(ge.geometry.self, &pv, &w);
+      law.ops->walls_f32(law.self, &pv, &w);
+    }
+  };
+  if (!ge.near_valid) {
+    WallContacts<Real> w = ge.slot.view(p_.size());
+    evaluate(v, w);
+    return;
+  }
+  if (ge.near.empty()) return;
+  subset_.gather(p_, ge.near, ge.slot.hist, ge.slot.history);
+  const Particles<Real> sv = subset_.particles(v);
+  WallContacts<Real> sw = subset_.walls();
+  {
+    const SerialScope serial(sw.n < subset_parallel_from);  // a team would cost more than the work
+    evaluate(sv, sw);
+  }
+  subset_.scatter(p_, ge.slot.overlap, ge.slot.hist);
 }
 
 // ---------------------------------------------------------------------------------------------
 // integration
 
-// First half kick (rotation too) and drift in one pass over memory: w += dt/2 T/I; v += dt/2 a;
-// x += dt v; wrap periodic axes; count particles outside open axes and non-finite ones; the two
-// largest displacements since the list build. The force and torque accumulators are cleared once
-// used, so the next evaluation needs no pass of its own.
-//
-// The list stays valid while no unlisted pair can have come within contact: two particles come
-// closer by at most the sum of their displacements, so the two largest displacements must sum to
-// less than the skin (with one fast particle among slow ones this lasts about twice as long as
-// "every displacement below half the skin").
+// The step's kicks, drift and checks in the form the vectorised loops of kick_drift.hpp take.
+template <class Real> KickDrift<Real> Simulation<Real>::integration(Real half_dt, Real dt) {
+  KickDrift<Real> k{p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
+                    p_.fx.data(), p_.fy.data(), p_.fz.data(), p_.wx.data(), p_.wy.data(), p_.wz.data(),
+                    p_.tx.data(), p_.ty.data(), p_.tz.data(), p_.x0.data(), p_.y0.data(), p_.z0.data(),
+                    p_.inv_m.data(), p_.inv_i.data(), half_dt, dt, {}, {}, {}, {}, {}, rotate_};
+  for (int a = 0; a < 3; ++a) {
+    k.g[a] = Real(settings_.gravity[a]);
+    k.lo[a] = Real(domain_.lo[a]);
+    k.hi[a] = Real(domain_.hi[a]);
+    k.len[a] = Real(domain_.length(a));
+    k.periodic[a] = domain_.periodic[a];
+  }
+  return k;
+}
+
+// First half kick (rotation too) and drift in one pass over memory; the force and torque
+// accumulators are cleared once used, so the next evaluation needs no pass of its own. Counts the
+// particles outside open axes and the non-finite ones; returns true when the list must be rebuilt:
+// some particle moved by half the skin since the last build (LAMMPS' and LIGGGHTS' criterion).
 template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real dt) {
   const long long n = static_cast<long long>(p_.size());
-  Real *pos[3] = {p_.x.data(), p_.y.data(), p_.z.data()};
-  Real *vel[3] = {p_.vx.data(), p_.vy.data(), p_.vz.data()};
-  Real *force[3] = {p_.fx.data(), p_.fy.data(), p_.fz.data()};
-  Real *spin[3] = {p_.wx.data(), p_.wy.data(), p_.wz.data()};
-  Real *torque[3] = {p_.tx.data(), p_.ty.data(), p_.tz.data()};
-  const Real *ref[3] = {p_.x0.data(), p_.y0.data(), p_.z0.data()};
-  const Real *inv_m = p_.inv_m.data(), *inv_i = p_.inv_i.data();
-  const bool rotate = rotate_;
-  const Real g[3] = {Real(settings_.gravity[0]), Real(settings_.gravity[1]), Real(settings_.gravity[2])};
-  const Real lo[3] = {Real(domain_.lo[0]), Real(domain_.lo[1]), Real(domain_.lo[2])};
-  const Real hi[3] = {Real(domain_.hi[0]), Real(domain_.hi[1]), Real(domain_.hi[2])};
-  const Real len[3] = {Real(domain_.length(0)), Real(domain_.length(1)), Real(domain_.length(2))};
-  const bool per[3] = {domain_.periodic[0], domain_.periodic[1], domain_.periodic[2]};
-#ifdef _OPENMP
-  const int max_threads = omp_get_max_threads();
-#else
-  const int max_threads = 1;
-#endif
-  if (thread_largest_.size() < 2 * std::size_t(max_threads)) thread_largest_.resize(2 * std::size_t(max_threads));
-  std::fill(thread_largest_.begin(), thread_largest_.end(), 0.0);
-  double *largest = thread_largest_.data();
+  const KickDrift<Real> k = integration(half_dt, dt);
   std::uint32_t escaped = 0, nonfinite = 0;
-#pragma omp parallel reduction(+ : escaped, nonfinite)
+  Real largest = 0;
+#pragma omp parallel reduction(+ : escaped, nonfinite) reduction(max : largest)
   {
-    Real first = 0, second = 0;
-#pragma omp for schedule(static) nowait
-    for (long long i = 0; i < n; ++i) {
-      if (rotate) {
-        for (int a = 0; a < 3; ++a) spin[a][i] += half_dt * torque[a][i] * inv_i[i];
-      }
-      Real d2 = 0;
-      bool out = false, finite = true;
-      for (int a = 0; a < 3; ++a) {
-        const Real v = vel[a][i] + half_dt * (force[a][i] * inv_m[i] + g[a]);
-        vel[a][i] = v;
-        force[a][i] = 0;
-        torque[a][i] = 0;
-        Real x = pos[a][i] + dt * v;
-        finite = finite && std::isfinite(x);
-        if (per[a]) {
-          if (x >= hi[a]) x -= len[a];
-          else if (x < lo[a]) x += len[a];
-        } else {
-          out = out || !(x >= lo[a] && x < hi[a]);
-        }
-        pos[a][i] = x;
-        const Real d = wrap(x - ref[a][i], len[a], per[a]);
-        d2 += d * d;
-      }
-      if (!(d2 <= first)) {  // NaN lands here and forces a rebuild
-        second = first;
-        first = d2;
-      } else if (d2 > second) {
-        second = d2;
-      }
-      nonfinite += finite ? 0u : 1u;
-      escaped += (out && finite) ? 1u : 0u;
-    }
-#ifdef _OPENMP
-    const int t = omp_get_thread_num();
-#else
-    const int t = 0;
-#endif
-    largest[2 * t] = double(first);
-    largest[2 * t + 1] = double(second);
+    const auto [t, nt] = team_slot();
+    KickDriftResult<Real> mine;
+    kick_drift(k, n * t / nt, n * (t + 1) / nt, mine);
+    escaped += mine.escaped;
+    nonfinite += mine.nonfinite;
+    largest = largest > mine.largest ? largest : mine.largest;
   }
   forces_zeroed_ = true;
   if (nonfinite > 0) {
@@ -508,17 +558,8 @@ template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real d
     report_bad_particle();
   }
   if (escaped > 0) remove_escaped();
-  double first = 0, second = 0;
-  for (std::size_t k = 0; k < thread_largest_.size(); ++k) {
-    const double d2 = thread_largest_[k];
-    if (!(d2 <= first)) {
-      second = first;
-      first = d2;
-    } else if (d2 > second) {
-      second = d2;
-    }
-  }
-  return escaped > 0 || !(std::sqrt(first) + std::sqrt(second) <= skin_);
+  const Real half_skin = Real(0.5 * skin_);
+  return escaped > 0 || !(largest <= half_skin * half_skin);
 }
 
 template <class Real> void Simulation<Real>::remove_escaped() {
@@ -546,28 +587,13 @@ template <class Real> void Simulation<Real>::remove_escaped() {
 // Second half kick fused with the per-step sanity check (NaN, speed limit).
 template <class Real> void Simulation<Real>::kick_and_check(Real half_dt) {
   const long long n = static_cast<long long>(p_.size());
-  Real *vx = p_.vx.data(), *vy = p_.vy.data(), *vz = p_.vz.data();
-  const Real *fx = p_.fx.data(), *fy = p_.fy.data(), *fz = p_.fz.data(), *im = p_.inv_m.data();
-  Real *wx = p_.wx.data(), *wy = p_.wy.data(), *wz = p_.wz.data();
-  const Real *tx = p_.tx.data(), *ty = p_.ty.data(), *tz = p_.tz.data(), *ii = p_.inv_i.data();
-  const bool rotate = rotate_;
-  const Real gx = Real(settings_.gravity[0]), gy = Real(settings_.gravity[1]), gz = Real(settings_.gravity[2]);
+  const KickDrift<Real> k = integration(half_dt, Real(dt_));
   const Real limit2 = Real(speed_limit_ * speed_limit_);
   std::uint32_t bad = 0;
-#pragma omp parallel for schedule(static) reduction(+ : bad)
-  for (long long i = 0; i < n; ++i) {
-    if (rotate) {
-      wx[i] += half_dt * tx[i] * ii[i];
-      wy[i] += half_dt * ty[i] * ii[i];
-      wz[i] += half_dt * tz[i] * ii[i];
-    }
-    const Real ux = vx[i] + half_dt * (fx[i] * im[i] + gx);
-    const Real uy = vy[i] + half_dt * (fy[i] * im[i] + gy);
-    const Real uz = vz[i] + half_dt * (fz[i] * im[i] + gz);
-    vx[i] = ux; vy[i] = uy; vz[i] = uz;
-    const Real v2 = ux * ux + uy * uy + uz * uz;
-    const Real w2 = wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i];
-    bad += (!(v2 <= limit2) || !std::isfinite(w2)) ? 1u : 0u;  // NaN fails the comparison
+#pragma omp parallel reduction(+ : bad)
+  {
+    const auto [t, nt] = team_slot();
+    bad += kick_check(k, limit2, n * t / nt, n * (t + 1) / nt);
   }
   if (bad > 0) report_bad_particle();
 }
@@ -599,17 +625,21 @@ template <class Real> void Simulation<Real>::check_overlaps() {
   const bool per[3] = {domain_.periodic[0], domain_.periodic[1], domain_.periodic[2]};
   const Real limit = Real(settings_.overlap_limit);
   std::uint32_t bad = 0;
+  const Real *x = p_.x.data(), *y = p_.y.data(), *z = p_.z.data(), *r = p_.r.data();
+  const std::uint32_t *start = list_.start.data(), *nbr = list_.nbr.data();
 #pragma omp parallel for schedule(static) reduction(+ : bad)
   for (long long ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    for (std::uint32_t k = list_.start[i]; k < list_.start[i + 1]; ++k) {
-      const std::uint32_t j = list_.nbr[k];
-      if (j < i) continue;  // the list is symmetric: each pair once
-      const Real dx = wrap(p_.x[i] - p_.x[j], len[0], per[0]), dy = wrap(p_.y[i] - p_.y[j], len[1], per[1]),
-                 dz = wrap(p_.z[i] - p_.z[j], len[2], per[2]);
-      const Real reach = p_.r[i] + p_.r[j];
-      const Real allowed = reach - 2 * limit * std::min(p_.r[i], p_.r[j]);  // centre distance at the limit
-      if (dx * dx + dy * dy + dz * dz < allowed * allowed) ++bad;
+    const auto i = static_cast<std::uint32_t>(ii);
+    // the list is symmetric: each pair once, from its lower particle (the upper neighbours come last)
+    std::uint32_t k = start[i];
+    for (std::uint32_t q = start[i]; q < start[i + 1]; ++q) k += nbr[q] < i ? 1u : 0u;
+    for (; k < start[i + 1]; ++k) {
+      const std::uint32_t j = nbr[k];
+      const Real dx = wrap(x[i] - x[j], len[0], per[0]), dy = wrap(y[i] - y[j], len[1], per[1]),
+                 dz = wrap(z[i] - z[j], len[2], per[2]);
+      const Real smaller = r[i] < r[j] ? r[i] : r[j];
+      const Real allowed = (r[i] + r[j]) - 2 * limit * smaller;  // centre distance at the limit
+      bad += dx * dx + dy * dy + dz * dz < allowed * allowed ? 1u : 0u;
     }
   }
   auto advice = "the contacts are too soft for the speeds or loads of this scene, or dt is too large: stiffen the "

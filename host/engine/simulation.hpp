@@ -13,9 +13,11 @@
 #pragma once
 #include <engine/counters.hpp>
 #include <engine/domain.hpp>
+#include <engine/kick_drift.hpp>
 #include <engine/neighbour_list.hpp>
 #include <engine/particle_arrays.hpp>
 #include <engine/particle_set.hpp>
+#include <engine/particle_subset.hpp>
 #include <engine/settings.hpp>
 #include <engine/walls.hpp>
 
@@ -55,9 +57,10 @@ template <class Real = double> class Simulation {
   void set_plane_wall_velocity(std::size_t i, const std::array<double, 3> &velocity);
 
   // --- time ----------------------------------------------------------------------------------
-  // Smallest stable step over the contact types present: the pair law for the lightest and
-  // heaviest particle combinations (when there are >= 2 particles), every wall and geometry law
-  // against the lightest and heaviest particle (m_eq = m). See stability.hpp. +inf when none.
+  // dt_crit: the smallest stable step over the contact types present, in the densest packing
+  // (packing_critical_dt): the pair law for the lightest and heaviest particle combinations (when
+  // there are >= 2 particles), every wall and geometry law against the lightest and heaviest
+  // particle (m_eq = m). See stability.hpp. +inf when none.
   double critical_dt() const;
   // The step in use (resolves the automatic step, or checks the requested one, if not done yet).
   double dt();
@@ -100,18 +103,31 @@ template <class Real = double> class Simulation {
   struct PlaneSlot {
     PlaneWall wall;
     WallSlot slot;
+    std::vector<std::uint32_t> near;  // the particles its law sees this step (plane_contacts)
   };
+  // A geometry is evaluated only for the particles near it (`near`, ascending), found by asking the
+  // plugin which particles a sphere 3 skins larger would touch (see find_near_geometry).
   struct GeometrySlot {
     GeometryWall geometry;
     WallSlot slot;
+    std::vector<std::uint32_t> near;
+    bool near_valid = false;
+    double near_since = 0;  // time of the search [s]
+    double speed = 0;       // bound on the speed of any surface point [m/s]
   };
 
   void prepare();
   void resolve_step();
   void rebuild_list();
+  void find_near_geometry(GeometrySlot &geometry);
+  void geometry_forces(GeometrySlot &geometry, const Particles<Real> &view);
   void compute_forces();
-  void plane_contacts(PlaneSlot &plane, std::uint32_t &touching);
+  void plane_contacts(PlaneSlot &plane);
+  void subset_forces(const ContactLaw &law, const Particles<Real> &sv, WallContacts<Real> &sw);
+  // Wall subsets smaller than this are evaluated on the calling thread.
+  static constexpr std::uint32_t subset_parallel_from = 512;
   void remove_escaped();
+  KickDrift<Real> integration(Real half_dt, Real dt);
   bool kick_and_drift(Real half_dt, Real dt);  // returns true when the list must be rebuilt
   void kick_and_check(Real half_dt);
   void check_overlaps();
@@ -146,7 +162,9 @@ template <class Real = double> class Simulation {
   // Scratch (kept to avoid allocation in rebuilds).
   std::vector<std::uint32_t> perm_, cell_, cell_sorted_, cell_start_, scratch_index_;
   std::vector<Real> scratch_real_;
-  std::vector<double> thread_largest_;  // the two largest displacements of each thread
+  std::vector<Real> inflated_radius_;   // radii + margin for the geometry search
+  std::vector<std::vector<std::uint32_t>> thread_index_;  // per-thread index lists
+  ParticleSubset<Real> subset_;
 };
 
 extern template class Simulation<double>;

@@ -11,10 +11,18 @@ double stable_omega_dt(double zeta) {
   return 2.0 / (std::sqrt(1.0 + zeta * zeta) + zeta);
 }
 
-double contact_critical_dt(const ContactLaw &law, double m_eq, double r_eff) {
+namespace {
+double critical_dt(const ContactLaw &law, double m_eq, double r_eff, double factor) {
   const double omega = law.ops->natural_frequency(law.self, m_eq, r_eff);
   if (!(omega > 0)) return std::numeric_limits<double>::infinity();
-  return stable_omega_dt(law.ops->damping_ratio(law.self, m_eq, r_eff)) / omega;
+  return stable_omega_dt(factor * law.ops->damping_ratio(law.self, m_eq, r_eff)) / (factor * omega);
+}
+}  // namespace
+
+double contact_critical_dt(const ContactLaw &law, double m_eq, double r_eff) { return critical_dt(law, m_eq, r_eff, 1); }
+
+double packing_critical_dt(const ContactLaw &law, double m_eq, double r_eff) {
+  return critical_dt(law, m_eq, r_eff, packing_frequency_factor);
 }
 
 }  // namespace spreadmap::engine

@@ -44,6 +44,7 @@ void process_map(const analysis::GridMap &, std::size_t, std::size_t, const anal
                  const std::vector<analysis::Optimum> &, const fs::path &) {
   unavailable();
 }
+void tradeoff(const std::vector<TradeoffRow> &, double, double, const fs::path &) { unavailable(); }
 
 #else
 
@@ -226,6 +227,21 @@ void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, 
     opt.height = 1100;
     opt.title = "Process map: R_q (filled) and V_s (lines)";
     render::process_map(in, png, opt);
+  });
+}
+
+void tradeoff(const std::vector<TradeoffRow> &rows, double vs_scatter_percent, double rq_scatter_percent,
+              const fs::path &png) {
+  guarded(png, [&] {
+    render::TradeoffInput in;
+    for (const auto &r : rows) in.points.push_back({r.name, r.wall_seconds, r.vs_error_percent, r.rq_error_percent, r.reference});
+    in.vs_scatter = vs_scatter_percent;
+    in.rq_scatter = rq_scatter_percent;
+    render::Options opt;
+    opt.width = 1400;
+    opt.height = 1000;
+    opt.title = "Speed-accuracy trade: error against the reference over cost";
+    render::tradeoff(in, png, opt);
   });
 }
 

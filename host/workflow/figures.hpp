@@ -36,4 +36,13 @@ void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &uni
 void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
                  const std::vector<analysis::Optimum> &optima, const fs::path &png);
 
+// The speed-accuracy trade: |error| of each fidelity against the reference over its wall time.
+struct TradeoffRow {
+  std::string name;
+  double wall_seconds = 0, vs_error_percent = 0, rq_error_percent = 0;
+  bool reference = false;
+};
+void tradeoff(const std::vector<TradeoffRow> &rows, double vs_scatter_percent, double rq_scatter_percent,
+              const fs::path &png);
+
 }  // namespace spreadmap::figures

@@ -38,7 +38,7 @@ constexpr sm_param_v1 powder_params[] = {
 
 constexpr sm_param_v1 time_params[] = {
     sm::number("step", "s", 0, 1, 0, "time step dt; 0 = automatic (safety x the stable limit dt_crit)"),
-    sm::number("safety", "-", 1e-3, 1, 0.2, "automatic step as a fraction of dt_crit"),
+    sm::number("safety", "-", 1e-3, 1, 0.4, "automatic step as a fraction of dt_crit"),
     sm::number("skin", "m", 0, 0.1, 0, "neighbour-list skin; 0 = 0.2 x the largest diameter"),
     sm::number("relax", "s", 0, 100, 0.01, "time after the spreader stops before the final state"),
     sm::number("checkpoint_interval", "s", 1, 1e6, 60, "wall-clock seconds between checkpoints"),
@@ -63,7 +63,7 @@ substrate: {friction: 0.25, restitution: 0.8}
 spreader: {use: roller, diameter: 10 mm, gap: 0.5 mm, start: 6 mm, travel: 18 mm, U: 100 mm/s,
            omega: 0 rad/s, friction: 0.12, restitution: 0.8}
 contact: {use: hooke_slider, v_max: 0.5 m/s, overlap_max: 5 um, friction: 0.185, restitution: 0.8}
-time: {safety: 0.2, relax: 0.01 s}
+time: {safety: 0.4, relax: 0.01 s}
 )";
 
 // The peers' reduced scene (shared/peers/README.md): 5000 spheres on a 2.5 mm periodic strip.
@@ -88,7 +88,7 @@ substrate: {friction: 0.25, restitution: 0.8}
 spreader: {use: roller, diameter: 10 mm, length: 70 mm, gap: 0.5 mm, start: 6 mm, travel: 104 mm,
            U: 100 mm/s, omega: 0 rad/s, friction: 0.12, restitution: 0.8}
 contact: {use: hooke_slider, v_max: 0.5 m/s, overlap_max: 2.5 um, friction: 0.185, restitution: 0.8}
-time: {safety: 0.2, relax: 0.01 s}
+time: {safety: 0.4, relax: 0.01 s}
 )";
 
 struct Section {

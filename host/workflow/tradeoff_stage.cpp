@@ -2,12 +2,13 @@
 // cheaper setting costs in accuracy. The most expensive fidelity (most particle-steps) is the
 // reference; for each fidelity: wall time, particle-steps, V_s and R_q with their heap-to-heap
 // scatter, and their error against the reference in per cent and in units of the combined
-// standard error. Writes tradeoff/tradeoff.csv and tradeoff/tradeoff.md.
+// standard error. Writes tradeoff/tradeoff.csv, tradeoff/tradeoff.md and tradeoff/tradeoff.png (the
+// error of each fidelity over its wall time, log-log).
 //
 //   - tradeoff:
 //       heaps: 3
 //       fidelities:
-//         - {name: reference, time.safety: 0.1, contact.overlap_max: 2.5 um}
+//         - {name: reference, time.safety: 0.2, contact.overlap_max: 2.5 um}
 //         - {name: float, precision: float}
 //
 // A contact.* key sets the particle-particle law and the substrate and spreader laws alike.
@@ -21,6 +22,7 @@
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "workflow/case_once.hpp"
+#include "workflow/figures.hpp"
 #include "workflow/scene.hpp"
 #include "workflow/stage.hpp"
 
@@ -74,7 +76,7 @@ class TradeoffStage : public Stage {
     const YAML::Node list = cfg["fidelities"];
     if (!list || !list.IsSequence() || list.size() < 2) {
       diag.error(Location::of(file, list ? list : cfg), "tradeoff.fidelities", "needs a list of at least 2 fidelities",
-                 "e.g. - {name: reference, time.safety: 0.1} and - {name: default}");
+                 "e.g. - {name: reference, time.safety: 0.2} and - {name: default}");
       return;
     }
     if (scene.is_null() || !scene.contains("contact")) return;
@@ -161,6 +163,7 @@ class TradeoffStage : public Stage {
     analysis::Table table({"fidelity", "settings", "heaps", "wall_seconds", "particle_steps", "vs", "vs_sd", "rq", "rq_sd",
                            "vs_error_percent", "vs_error_in_scatter", "rq_error_percent", "rq_error_in_scatter"},
                           "tradeoff.csv");
+    std::vector<figures::TradeoffRow> figure_rows;
     std::string md = fmt::format(
         "| fidelity | settings | wall [s] | particle-steps | V_s [mm²/s] | R_q [µm] | V_s error | R_q error |\n"
         "|---|---|---|---|---|---|---|---|\n");
@@ -177,6 +180,7 @@ class TradeoffStage : public Stage {
                      analysis::Table::format(rq.mean), analysis::Table::format(rq.sd), analysis::Table::format(f == ref ? 0 : vs_err),
                      analysis::Table::format(f == ref ? 0 : vs_z), analysis::Table::format(f == ref ? 0 : rq_err),
                      analysis::Table::format(f == ref ? 0 : rq_z)});
+      figure_rows.push_back({fidelities_[f].name, wall.mean, vs_err, rq_err, f == ref});
       md += fmt::format("| {}{} | `{}` | {:.1f} | {:.3g} | {:.3f} ± {:.3f} | {:.2f} ± {:.2f} | {} | {} |\n", fidelities_[f].name,
                         f == ref ? " (reference)" : "", settings, wall.mean, ps.mean, vs.mean * 1e6, vs.sd * 1e6, rq.mean * 1e6,
                         rq.sd * 1e6, f == ref ? "–" : fmt::format("{:+.2f} % ({:+.1f} σ)", vs_err, vs_z),
@@ -188,6 +192,7 @@ class TradeoffStage : public Stage {
     fs::create_directories(dir);
     table.write_csv((dir / "tradeoff.csv").string());
     write_atomic(dir / "tradeoff.md", md);
+    figures::tradeoff(figure_rows, 100 * vs_ref.sd / vs_ref.mean, 100 * rq_ref.sd / rq_ref.mean, dir / "tradeoff.png");
     spdlog::info("tradeoff: {} fidelities x {} heaps; reference {}; {}", fidelities_.size(), heaps_, fidelities_[ref].name,
                  (dir / "tradeoff.md").string());
   }

@@ -4,6 +4,10 @@
 // quickstart must show at least: a faster spreader spreads more powder per second.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -33,6 +37,24 @@ int run(const std::string &args, std::string *out = nullptr) {
   return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
+// Held while this process runs the workflow into run_dir: the other test processes wait for it.
+class RunLock {
+ public:
+  RunLock() {
+    fs::create_directories(run_dir.parent_path());
+    fd_ = ::open((run_dir.string() + ".lock").c_str(), O_CREAT | O_RDWR | O_CLOEXEC, 0644);
+    if (fd_ >= 0) ::flock(fd_, LOCK_EX);
+  }
+  ~RunLock() {
+    if (fd_ >= 0) ::close(fd_);  // releases the lock
+  }
+  RunLock(const RunLock &) = delete;
+  RunLock &operator=(const RunLock &) = delete;
+
+ private:
+  int fd_ = -1;
+};
+
 nlohmann::json json_file(const fs::path &p) {
   std::ifstream in(p);
   return nlohmann::json::parse(in);
@@ -41,6 +63,9 @@ nlohmann::json json_file(const fs::path &p) {
 class Quickstart : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
+    // ctest runs each test of this suite in a process of its own, several at once: one process at a
+    // time runs the workflow, the others wait and then resume it (which recomputes nothing).
+    const RunLock lock;
     std::string log;
     status_ = run("run " + std::string(SPREADMAP_SOURCE_DIR) + "/workflows/quickstart.yaml --jobs 2 --quiet --out " +
                   run_dir.string(), &log);
@@ -154,6 +179,7 @@ TEST_F(Quickstart, ASecondRunRecomputesNothing) {
   ASSERT_EQ(status_, 0) << log_;
   const auto before = fs::last_write_time(run_dir / "cases/c004/state.vtp");
   std::string out;
+  const RunLock lock;
   ASSERT_EQ(run("run " + std::string(SPREADMAP_SOURCE_DIR) + "/workflows/quickstart.yaml --only simulate,characterise --out " +
                 run_dir.string(), &out), 0) << out;
   EXPECT_NE(out.find("0 to run, 9 finished already"), std::string::npos) << out;

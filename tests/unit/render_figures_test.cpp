@@ -137,6 +137,26 @@ TEST(RenderFigures, ProcessMapHasBothContourFamilies) {
   EXPECT_GT(rt::count_colour(im, rgb255(0.2, 0.95, 0.3), 1), 20u) << "optimum marker missing";
 }
 
+TEST(RenderFigures, TradeoffIsLogLogWithBothErrorsAndTheScatter) {
+  // Four fidelities over two decades of cost; errors from 0.1 % to 20 %: two decades too.
+  r::TradeoffInput in;
+  in.points = {{"reference", 40, 0, 0, true},
+               {"stiff", 25, -1.2, 2.0, false},
+               {"quick", 12, 0.3, -0.6, false},
+               {"soft", 1.5, 8.0, 20.0, false}};
+  in.vs_scatter = 1.5;
+  in.rq_scatter = 3.0;
+  const fs::path png = out_dir() / "tradeoff.png";
+  r::tradeoff(in, png, small("trade"));
+  const auto im = check_figure("tradeoff", png, 50);
+  // Markers and the dashed scatter lines of both series, in their colours.
+  EXPECT_GT(rt::count_colour(im, rgb255(0.12, 0.47, 0.71), 1), 150u) << "V_s markers or scatter line missing";
+  EXPECT_GT(rt::count_colour(im, rgb255(0.84, 0.15, 0.16), 1), 150u) << "R_q markers or scatter line missing";
+  r::TradeoffInput bad = in;
+  bad.points[1].cost = 0;  // no log of zero cost
+  EXPECT_THROW(r::tradeoff(bad, out_dir() / "bad_tradeoff.png", small()), r::RenderError);
+}
+
 TEST(RenderFigures, ReferenceComparisonCatchesAChangedCamera) {
   // The comparison sees a missing layer (map without its std lines: 1.05 measured, > 0.3 required)
   // and fails a reframed camera (snapshot of a longer strip: 14.6 measured, > tolerance required).

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 #include <limits>
+#include <random>
 
 namespace sm = spreadmap;
 using namespace sm::engine;
@@ -163,7 +164,7 @@ Growth perturbation_growth(double restitution, double factor, int steps) {
   push_particle(p, 0.005, 0.005, radius - eq - nudge, radius);
   probe.add_particles(p, density);
   Settings s = quiet();
-  s.dt = factor * probe.critical_dt();
+  s.dt = factor * contact_critical_dt(bind(law), m, radius);  // one contact: wall, m_eq = m
   s.allow_unstable_dt = true;
   Simulation<double> sim(open_box, bind(law), s);
   sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind(law)});
@@ -188,8 +189,9 @@ Growth perturbation_growth(double restitution, double factor, int steps) {
 
 }  // namespace
 
-TEST(EngineTimeStep, CriticalStepIsSharp) {
-  // At 0.9 dt_crit the perturbation decays (damped) or stays bounded (e = 1); at 1.1 dt_crit it
+TEST(EngineTimeStep, SingleContactLimitIsSharp) {
+  // One contact's limit (contact_critical_dt, 2 to 3.5 x the scene's dt_crit, stability.hpp).
+  // At 0.9 x the limit the perturbation decays (damped) or stays bounded (e = 1); at 1.1 x it
   // grows by orders of magnitude within a few dozen steps. The nudge (1e-3 of the static overlap)
   // keeps the sphere in contact, where the linear analysis holds, up to a growth of 1e6.
   for (double e : {0.1, 0.5, 0.9}) {
@@ -203,6 +205,83 @@ TEST(EngineTimeStep, CriticalStepIsSharp) {
   EXPECT_FALSE(elastic.run_error);
   EXPECT_LT(elastic.largest, 100.0);  // bounded: at omega dt = 1.8 the discrete energy is distorted, not growing
   EXPECT_GT(perturbation_growth(1.0, 1.1, 2000).largest, 1e5);
+}
+
+namespace {
+
+// A face-centred cubic crystal of 4 x 3^3 spheres filling a periodic box, every contact compressed
+// by 1 % of the diameter (the forces balance by symmetry), each sphere displaced at random by 1e-4
+// of that overlap. Integrated at `factor` x dt_crit for `steps` steps; returns the largest
+// displacement from the lattice relative to the initial one, or stops early at the engine's RunError.
+Growth fcc_growth(double restitution, double factor, int steps) {
+  TestSpringDashpot law = TestSpringDashpot::with_restitution(stiffness, restitution);
+  const int cells = 3;
+  const double r = radius, gap = 2 * r * 0.99, a = gap * std::sqrt(2.0), side = cells * a;
+  const Domain box{{0, 0, 0}, {side, side, side}, {true, true, true}};
+  ParticleSet p;
+  std::vector<std::array<double, 3>> lattice;
+  const double basis[4][3] = {{0, 0, 0}, {0.5, 0.5, 0}, {0.5, 0, 0.5}, {0, 0.5, 0.5}};
+  for (int i = 0; i < cells; ++i)
+    for (int j = 0; j < cells; ++j)
+      for (int k = 0; k < cells; ++k)
+        for (const auto &b : basis) lattice.push_back({(i + b[0] + 0.25) * a, (j + b[1] + 0.25) * a, (k + b[2] + 0.25) * a});
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const double kick = 1e-4 * (2 * r - gap);
+  for (const auto &q : lattice) push_particle(p, q[0] + kick * u(rng), q[1] + kick * u(rng), q[2] + kick * u(rng), r);
+  Settings s = quiet();
+  s.gravity = {0, 0, 0};
+  Simulation<double> probe(box, bind(law), s);
+  probe.add_particles(p, density);
+  s.dt = factor * probe.critical_dt();
+  s.allow_unstable_dt = true;
+  Simulation<double> sim(box, bind(law), s);
+  sim.add_particles(p, density);
+  auto largest_offset = [&] {
+    const ParticleSet now = sim.state();
+    double worst = 0;
+    for (std::size_t i = 0; i < now.x.size(); ++i) {
+      const auto &q = lattice[now.id[i]];
+      double d2 = 0;
+      for (int c = 0; c < 3; ++c) {
+        double d = (c == 0 ? now.x[i] : c == 1 ? now.y[i] : now.z[i]) - q[c];
+        d -= side * std::round(d / side);
+        d2 += d * d;
+      }
+      worst = std::max(worst, std::sqrt(d2));
+    }
+    return worst;
+  };
+  const double start = largest_offset();
+  Growth out;
+  try {
+    for (int k = 0; k < steps; ++k) {
+      sim.step();
+      if (k % 10 == 9) {
+        out.last = largest_offset() / start;
+        out.largest = std::max(out.largest, out.last);
+      }
+    }
+  } catch (const RunError &) {
+    out.run_error = true;
+    out.largest = std::numeric_limits<double>::infinity();
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST(EngineTimeStep, SceneLimitIsSharpForTheDensestPacking) {
+  // dt_crit is the limit of the fastest mode of a face-centred cubic packing, twice a contact's
+  // frequency with twice its damping ratio (stability.hpp). A perturbed crystal stays near its
+  // lattice at 0.9 x dt_crit and its fastest mode runs away at 1.1 x.
+  for (double e : {1.0, 0.8, 0.3}) {
+    const Growth stable = fcc_growth(e, 0.9, 3000);
+    EXPECT_FALSE(stable.run_error) << "e = " << e;
+    EXPECT_LT(stable.largest, 10.0) << "e = " << e;
+    const Growth unstable = fcc_growth(e, 1.1, 3000);
+    EXPECT_GT(unstable.largest, 1e4) << "e = " << e;
+  }
 }
 
 TEST(EngineRunChecks, DeepOverlapStopsWithAClearMessage) {

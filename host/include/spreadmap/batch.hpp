@@ -27,9 +27,9 @@ template <class Real> struct Particles {
 // fixed order, so results do not depend on the number of threads. hist holds `history` values per
 // list entry; the engine carries them across list rebuilds.
 // Optional (null when absent), for laws without history on the CPU (pair_once.hpp): mirror[k] is
-// the entry (j, i) of entry k = (i, j); scratch holds records of 6 values, a leading all-zero one
-// and two per entry (6 * (2 * entries + 1)), slot one value per entry; the loop overwrites both
-// except record 0.
+// the entry (j, i) of entry k = (i, j); scratch holds 6 * (2 * entries + 1 + particles) values
+// (records of 6 values, a leading all-zero one and two per entry, then 6 running sums per particle),
+// slot one value per entry; the loop overwrites both except record 0.
 template <class Real> struct PairList {
   const std::uint32_t *start;
   const std::uint32_t *nbr;

@@ -120,11 +120,26 @@ struct MapInput {
   double rq_target = 0;  // [m], shown in the optimum label when > 0
 };
 
+// The speed-accuracy trade (tradeoff stage): one point per fidelity, errors in per cent of the
+// reference's mean (signed; drawn as |error|), cost in any positive unit named by cost_label.
+struct TradeoffPoint {
+  std::string name;
+  double cost = 0;                    // e.g. wall seconds per case
+  double vs_error = 0, rq_error = 0;  // [%]
+  bool reference = false;             // the reference: its cost is marked, it has no error
+};
+struct TradeoffInput {
+  std::vector<TradeoffPoint> points;
+  double vs_scatter = 0, rq_scatter = 0;  // heap-to-heap standard deviation of the reference [% of its mean]
+  std::string cost_label = "wall time per case [s]";
+};
+
 void snapshot(const SnapshotInput& in, const std::filesystem::path& png, const Options& opt = {});
 void heightmap(const HeightmapInput& in, const std::filesystem::path& png, const Options& opt = {});
 void surface(const SurfaceInput& in, const std::filesystem::path& png, const Options& opt = {});
 void parity(const ParityInput& in, const std::filesystem::path& png, const Options& opt = {});
 void process_map(const MapInput& in, const std::filesystem::path& png, const Options& opt = {});
+void tradeoff(const TradeoffInput& in, const std::filesystem::path& png, const Options& opt = {});
 
 // frames[i] is written to directory / "<stem>_<i, 4 digits>.png"; the colour range is shared by all
 // frames (largest speed over the sequence unless speed_max is set). Returns the files written.

@@ -1,0 +1,157 @@
+// The engine's fast paths give exactly the results of the plain ones: a law without history
+// evaluated once per pair (spreadmap/pair_once.hpp) against every list entry, for any number of
+// threads; a geometry evaluated for its near particles only against every particle.
+#include "engine_test_law.hpp"
+
+#include <cstring>
+#include <filesystem>
+#include <gtest/gtest.h>
+#include <memory>
+#include <omp.h>
+#include <string>
+#include <unistd.h>
+
+namespace sm = spreadmap;
+using namespace sm::engine;
+using namespace sm::engine::testing;
+
+namespace {
+
+// Spring-dashpot normal force, viscous-regularised Coulomb slider and a rolling torque: no history,
+// force and torque on both sides of a contact, as the study's law (hooke_slider) has them.
+struct TestSlider {
+  static constexpr int history = 0;
+  double k = 100, zeta = 0.2, mu = 0.4, gamma = 200, mu_r = 0.05;
+
+  double natural_frequency(double m_eq, double) const { return std::sqrt(k / m_eq); }
+  double damping_ratio(double, double) const { return zeta; }
+  bool makes_torque() const { return true; }
+
+  template <class Real> SM_HD sm::ContactForce<Real> operator()(const sm::ContactState<Real> &c, Real *) const {
+    sm::ContactForce<Real> f;
+    f.normal = Real(k) * c.overlap - Real(2 * zeta) * std::sqrt(Real(k) * c.m_eq) * c.v_n;
+    const Real fn = f.normal < 0 ? -f.normal : f.normal;
+    const Real slip = sm::norm(c.v_t);
+    if (slip > 0) f.tangent = c.v_t * (-sm::min(Real(mu) * fn, c.m_eq * Real(gamma) * slip) / slip);
+    const sm::Vec3<Real> roll = c.w_rel - c.normal * sm::dot(c.w_rel, c.normal);
+    const Real spin = sm::norm(roll);
+    if (spin > 0) f.torque = roll * (-Real(mu_r) * c.r_eff * fn / spin);
+    return f;
+  }
+};
+
+ContactLaw bind_slider(const TestSlider &law) { return {&sm::detail::ContactOps<TestSlider>::table, &law}; }
+
+// A ball of radius R moving at constant velocity: a geometry with a bound on its speed.
+struct TestBall {
+  double centre[3], velocity[3], radius;
+
+  template <class Real>
+  SM_HD bool operator()(const sm::Vec3<Real> &p, Real r, Real t, sm::WallHit<Real> &hit) const {
+    const sm::Vec3<Real> c{Real(centre[0] + velocity[0] * t), Real(centre[1] + velocity[1] * t),
+                           Real(centre[2] + velocity[2] * t)};
+    const sm::Vec3<Real> d = p - c;
+    const Real dist = sm::norm(d);
+    hit.overlap = r - (dist - Real(radius));
+    if (!(hit.overlap > 0) || !(dist > 0)) return false;
+    hit.normal = d * (Real(1) / dist);
+    hit.velocity = {Real(velocity[0]), Real(velocity[1]), Real(velocity[2])};
+    return true;
+  }
+  double duration() const { return 1; }
+  double max_surface_speed() const {
+    return std::sqrt(velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
+  }
+  void pose(double, sm::sm_pose_v1 *out) const { *out = sm::sm_pose_v1{}; }
+};
+
+template <class Real> bool same_bits(const std::vector<Real> &a, const std::vector<Real> &b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Real)) == 0;
+}
+
+// Positions, velocities and spins in id order.
+bool same_state(const Simulation<double> &a, const Simulation<double> &b) {
+  const ParticleSet p = a.state(), q = b.state();
+  auto by_id = [](const ParticleSet &s, const std::vector<double> &c) {
+    std::vector<double> out(c.size());
+    for (std::size_t i = 0; i < c.size(); ++i) out[s.id[i]] = c[i];
+    return out;
+  };
+  for (auto m : {&ParticleSet::x, &ParticleSet::y, &ParticleSet::z, &ParticleSet::vx, &ParticleSet::vy,
+                 &ParticleSet::vz, &ParticleSet::wx, &ParticleSet::wy, &ParticleSet::wz})
+    if (!same_bits(by_id(p, p.*m), by_id(q, q.*m))) return false;
+  return a.size() == b.size() && a.time() == b.time();
+}
+
+Settings quiet() {
+  Settings s;
+  s.log = [](const std::string &) {};
+  s.parallel_min_particles = 0;  // every thread, even for this small scene
+  return s;
+}
+
+// Polydisperse spheres falling into a periodic box onto a floor, with friction and rolling
+// resistance: many contacts, several list builds.
+struct Scene {
+  TestSlider pair, wall{200, 0.2, 0.3, 200, 0.05};
+  Domain domain{{0, 0, 0}, {0.012, 0.012, 0.05}, {true, true, false}};
+  std::unique_ptr<Simulation<double>> make(Settings settings, std::size_t n = 1500) {
+    auto sim = std::make_unique<Simulation<double>>(domain, bind_slider(pair), settings);
+    sim->add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_slider(wall), true, "floor"});
+    sim->add_particles(random_lattice(n, 0.0005, {0, 0, 0.0006}, {0.012, 0.012, 0.045}, 0.3), 2500);
+    return sim;
+  }
+};
+
+}  // namespace
+
+TEST(EnginePairsOnce, SameBitsAsEveryEntryForAnyThreadCount) {
+  Scene scene;
+  auto run = [&](bool once, int threads) {
+    omp_set_num_threads(threads);
+    Settings s = quiet();
+    s.pairs_once = once;
+    auto sim = scene.make(s);
+    sim->run_steps(800);
+    omp_set_num_threads(2);
+    return sim;
+  };
+  const auto every = run(false, 2), one = run(true, 1), two = run(true, 2), three = run(true, 3);
+  EXPECT_GT(every->counters().list_builds, 3u) << "the scene should rebuild its list several times";
+  EXPECT_TRUE(same_state(*every, *one)) << "evaluating each pair once changes the result";
+  EXPECT_TRUE(same_state(*one, *two)) << "1 vs 2 threads differ";
+  EXPECT_TRUE(same_state(*one, *three)) << "1 vs 3 threads differ";
+}
+
+TEST(EnginePairsOnce, ResumeIsBitwiseIdentical) {
+  const auto path = std::filesystem::temp_directory_path() / ("engine_once_" + std::to_string(::getpid()) + ".bin");
+  Scene scene;
+  auto whole = scene.make(quiet());
+  whole->run_steps(300);
+  whole->save_checkpoint(path);
+  whole->run_steps(300);
+  auto resumed = std::make_unique<Simulation<double>>(scene.domain, bind_slider(scene.pair), quiet());
+  resumed->add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_slider(scene.wall), true, "floor"});
+  resumed->load_checkpoint(path);
+  resumed->run_steps(300);
+  std::filesystem::remove(path);
+  EXPECT_TRUE(same_state(*whole, *resumed));
+}
+
+TEST(EngineGeometry, NearParticlesOnlyGiveTheSameBitsAsEveryParticle) {
+  // A ball comes down into the falling packing. Without a speed bound the engine evaluates the
+  // geometry for every particle; with it, only for those near the ball.
+  Scene scene;
+  const TestBall ball{{0.006, 0.006, 0.03}, {0.02, 0.01, -0.3}, 0.003};
+  sm::sm_geometry_ops_v1 unbounded = sm::detail::GeometryOps<TestBall>::table;
+  unbounded.max_surface_speed = nullptr;
+  auto run = [&](const sm::sm_geometry_ops_v1 *ops) {
+    auto sim = scene.make(quiet());
+    if (ops) sim->add_geometry({ops, &ball, bind_slider(scene.wall), "ball"});
+    sim->run_steps(1500);
+    return sim;
+  };
+  const auto near = run(&sm::detail::GeometryOps<TestBall>::table), every = run(&unbounded), none = run(nullptr);
+  EXPECT_TRUE(same_state(*near, *every));
+  EXPECT_FALSE(same_state(*near, *none)) << "the ball should have pushed particles";
+}
