@@ -7,7 +7,9 @@ NRMSE = 100 x RMSE / (max - min of the split's true values) [%] and Pearson R, t
 Input: a CSV with a header, one row per case, the input and output columns and a split column
 whose values are `train` or `test` (case-insensitive), e.g. train/<model>/data.csv written by
 `spreadmap train`. Column names match case-insensitively. Without a split column the rows are
-split 35/10-style (test share 10/45, at least 2) by a seeded shuffle.
+split 35/10-style (test share 10/45, at least 2) by a seeded shuffle. spreadmap's own bpnn and gp
+are then trained by `spreadmap train` on exactly the same rows and split (given to it as a column)
+and printed beside the peers (rows sm-bpnn, sm-gp; the fit time includes the program's start).
 
   /usr/bin/python3 bench/surrogate_peers.py runs/quickstart/train/bpnn/data.csv \
       --inputs U,omega --outputs vs,rq --split-column split
@@ -17,8 +19,12 @@ Needs python3-sklearn (Debian: apt-get install -y python3-sklearn); a bench depe
 """
 import argparse
 import csv
+import json
 import math
+import os
+import subprocess
 import sys
+import tempfile
 import time
 import warnings
 
@@ -88,6 +94,10 @@ def main():
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--restarts", type=int, default=5, help="GP optimiser restarts")
     ap.add_argument("--demo", action="store_true", help="use the built-in smooth test function")
+    ap.add_argument("--spreadmap", default=os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build", "bin",
+                                                        "spreadmap"),
+                    help="spreadmap binary whose bpnn and gp are scored beside the peers on the same split "
+                         "(skipped when missing)")
     a = ap.parse_args()
     try:
         from sklearn.gaussian_process import GaussianProcessRegressor
@@ -146,6 +156,36 @@ def main():
             t = y[:, k]
             print(f"{label:<8}{name:<10}{nrmse(t[train], p[train]):>14.3f}{nrmse(t[test], p[test]):>14.3f}"
                   f"{pearson(t[train], p[train]):>10.5f}{pearson(t[test], p[test]):>10.5f}{dt:>8.2f}{note}")
+    spreadmap_scores(a.spreadmap, ins, outs, x, y, train)
+
+
+def spreadmap_scores(binary, ins, outs, x, y, train):
+    """`spreadmap train` with the same rows and the same split (given as a column), both models."""
+    if not os.access(binary, os.X_OK):
+        print(f"spreadmap: {binary} not found or not executable: build it, or pass --spreadmap BIN")
+        return
+    with tempfile.TemporaryDirectory() as work:
+        data = os.path.join(work, "data.csv")
+        with open(data, "w", newline="") as f:
+            w = csv.writer(f)
+            w.writerow(ins + outs + ["split"])
+            for k in range(len(x)):
+                w.writerow([repr(float(v)) for v in x[k]] + [repr(float(v)) for v in y[k]] +
+                           ["train" if train[k] else "test"])
+        for model in ("bpnn", "gp"):
+            t0 = time.perf_counter()
+            run = subprocess.run([binary, "train", data, "--inputs", ",".join(ins), "--outputs", ",".join(outs),
+                                  "--model", model, "--split-column", "split", "--format", "json", "--no-figures",
+                                  "--quiet", "--out", os.path.join(work, model)], capture_output=True, text=True)
+            dt = time.perf_counter() - t0
+            if run.returncode != 0:
+                print(f"spreadmap {model}: failed ({run.returncode}): {run.stderr.strip()}")
+                continue
+            report = json.loads(run.stdout)
+            for name in outs:
+                o = report["outputs"][name]
+                print(f"{'sm-' + model:<8}{name:<10}{o['nrmse_train']:>14.3f}{o['nrmse_test']:>14.3f}"
+                      f"{o['r_train']:>10.5f}{o['r_test']:>10.5f}{dt:>8.2f}")
 
 
 if __name__ == "__main__":

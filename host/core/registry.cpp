@@ -4,6 +4,8 @@
 
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
+#include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <set>
 
@@ -95,6 +97,14 @@ const LoadedPlugin &PluginRegistry::load_file(const fs::path &file, const std::s
 const LoadedPlugin &PluginRegistry::get(const std::string &kind, const std::string &name) {
   const std::string id = kind + "/" + name;
   if (auto it = loaded_.find(id); it != loaded_.end()) return it->second;
+  // By name only: a name that is a path would load a library from anywhere a workflow points to.
+  const bool plain = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-';
+  });
+  if (!plain)
+    throw PluginError("'" + name + "' is not a plugin name: " + kind +
+                      " plugins are chosen by name (letters, digits, _ and -), never by a path; install the "
+                      "library in a plugin folder or add its folder to SPREADMAP_PLUGIN_PATH, then use its name");
   const auto files = candidates(kind, name);
   if (files.empty()) {
     const auto available = names(kind);

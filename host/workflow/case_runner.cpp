@@ -77,15 +77,33 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
     sim.save_checkpoint(checkpoint);
   };
   std::vector<engine::SeriesEntry> series;
+  nlohmann::json series_record = nlohmann::json::array();  // with the spreader's pose, for frames
+  auto pose_at = [&](double t) {
+    sm_pose_v1 pose{};
+    gops->pose(plugins.spreader.get(), t, &pose);
+    return nlohmann::json{{"x", pose.centre[0]}, {"z", pose.centre[2]}, {"radius", pose.radius}, {"angle", pose.angle}};
+  };
   int next_snapshot = 1;
+  // resumed: the snapshots written before the checkpoint stay in the series (their time is in the file)
+  while (snapshots > 0 && next_snapshot <= snapshots && sim.time() >= duration * next_snapshot / (snapshots + 1)) {
+    const std::string name = "series/state_" + std::to_string(next_snapshot) + ".vtp";
+    if (fs::exists(req.dir / name)) {
+      const double t = engine::read_vtp(req.dir / name).time;
+      series.push_back({t, name});
+      series_record.push_back({{"time", t}, {"file", name}, {"spreader", pose_at(t)}});
+    }
+    ++next_snapshot;
+  }
   // one snapshot time per interval; callbacks every 100 steps are cheap against the step cost
   bool ok = sim.run_until(duration, [&](const engine::Simulation<Real> &s) {
     const auto now = std::chrono::steady_clock::now();
     if (req.progress) req.progress(0.1 + 0.9 * s.time() / duration, "");
-    if (snapshots > 0 && s.time() >= duration * next_snapshot / (snapshots + 1)) {
+    if (next_snapshot <= snapshots && s.time() >= duration * next_snapshot / (snapshots + 1)) {
       const std::string name = "series/state_" + std::to_string(next_snapshot) + ".vtp";
+      fs::create_directories(req.dir / "series");
       engine::write_vtp(req.dir / name, s.state(), s.time());
       series.push_back({s.time(), name});
+      series_record.push_back({{"time", s.time()}, {"file", name}, {"spreader", pose_at(s.time())}});
       ++next_snapshot;
     }
     if (stop_requested()) return false;
@@ -104,12 +122,11 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   engine::write_vtp(req.dir / "state.vtp", state, sim.time());
   if (!series.empty()) {
     series.push_back({sim.time(), "state.vtp"});
+    series_record.push_back({{"time", sim.time()}, {"file", "state.vtp"}, {"spreader", pose_at(sim.time())}});
     engine::write_pvd(req.dir / "series.pvd", series);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto &c = sim.counters();
-  sm_pose_v1 pose{};
-  gops->pose(plugins.spreader.get(), sim.time(), &pose);
   nlohmann::json out = {
       {"id", req.id}, {"hash", hash}, {"status", "done"}, {"inputs", req.inputs},
       {"particles_start", heap.size()}, {"particles_end", state.size()}, {"removed", sim.removed_count()},
@@ -118,8 +135,13 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
       {"particle_steps_per_second", c.particle_steps_per_second()}, {"list_builds", c.list_builds},
       {"steps_this_run", double(sim.step_count()) - steps_before}, {"rotation_integrated", sim.rotation_integrated()},
       {"precision", scene["precision"]},
-      {"spreader_end", {{"x", pose.centre[0]}, {"z", pose.centre[2]}, {"radius", pose.radius}}},
+      {"spreader_end", pose_at(sim.time())},
   };
+  if (!series_record.empty()) out["series"] = series_record;
+  // what case_finished checks on a re-run: a state damaged or replaced since makes the case run again
+  const std::string state_text = read_text(req.dir / "state.vtp");
+  out["state_bytes"] = state_text.size();
+  out["state_hash"] = stable_hash(state_text);
   write_atomic(req.dir / "case.json", out.dump(2) + "\n");
   std::error_code ec;
   fs::remove(checkpoint, ec);
@@ -151,7 +173,10 @@ bool case_finished(const fs::path &dir, const std::string &hash) {
   if (!fs::exists(dir / "case.json", ec) || !fs::exists(dir / "state.vtp", ec)) return false;
   try {
     const auto j = nlohmann::json::parse(read_text(dir / "case.json"));
-    return j.value("hash", "") == hash && j.value("status", "") == "done";
+    if (j.value("hash", "") != hash || j.value("status", "") != "done") return false;
+    if (!j.contains("state_bytes")) return true;  // written before the state was fingerprinted
+    if (fs::file_size(dir / "state.vtp", ec) != j["state_bytes"].get<std::uintmax_t>() || ec) return false;
+    return stable_hash(read_text(dir / "state.vtp")) == j.value("state_hash", "");
   } catch (...) {
     return false;
   }

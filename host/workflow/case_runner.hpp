@@ -29,7 +29,8 @@ std::string case_hash(const nlohmann::json &scene);
 // The hash of everything that decides the settled heap.
 std::string heap_hash(const nlohmann::json &scene);
 
-// True when the case folder holds a finished result for exactly these inputs.
+// True when the case folder holds a finished result for exactly these inputs, its state.vtp intact
+// (the size and hash case.json recorded).
 bool case_finished(const fs::path &dir, const std::string &hash);
 
 // Runs (or resumes) the case; returns the case.json content. Throws Interrupted on SIGINT/SIGTERM

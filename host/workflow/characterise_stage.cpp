@@ -9,6 +9,7 @@
 #include "core/heightmap_vti.hpp"
 #include "core/schema.hpp"
 #include "core/units.hpp"
+#include "workflow/figure_style.hpp"
 #include "workflow/figures.hpp"
 #include "workflow/layer_eval.hpp"
 #include "workflow/stage.hpp"
@@ -53,10 +54,12 @@ class CharacteriseStage : public Stage {
                  fmt::format("x {}..{} mm, y {}..{} mm is not inside the domain (0..{} mm by 0..{} mm)", region_.x0 * 1e3,
                              region_.x1 * 1e3, region_.y0 * 1e3, region_.y1 * 1e3, length * 1e3, width * 1e3),
                  "set characterise.region: {x: [A mm, B mm], y: [C mm, D mm]} inside the domain");
-    render_ = cfg["render"] ? cfg["render"].as<bool>(true) : true;
+    style_ = figures::read_style(cfg["render"], true, false, file, "characterise.render", diag);
+    render_ = style_.on;
   }
 
   void run(StageContext &ctx) override {
+    figures::use_style(style_);
     const nlohmann::json manifest = ctx.run.manifest();
     if (!manifest.contains("cases") || manifest["cases"].empty())
       throw InputError("error: characterise: " + ctx.run.root().string() +
@@ -194,6 +197,7 @@ class CharacteriseStage : public Stage {
 
   LayerRequest request_;
   Region region_;
+  figures::Style style_;
   bool render_ = true;
 };
 

@@ -12,6 +12,7 @@
 #endif
 
 #include "workflow/mapping.hpp"
+#include "workflow/figure_style.hpp"
 
 namespace spreadmap::figures {
 
@@ -34,7 +35,15 @@ static void unavailable() {
   static std::once_flag once;
   std::call_once(once, [] { spdlog::warn("figures: this build has no VTK (SPREADMAP_ENABLE_VTK=OFF); no PNG is written"); });
 }
-void snapshot(const engine::ParticleSet &, const nlohmann::json &, const fs::path &, const std::string &) { unavailable(); }
+void snapshot(const engine::ParticleSet &, const nlohmann::json &, const fs::path &, const std::string &,
+              const nlohmann::json &) {
+  unavailable();
+}
+std::size_t frames(const std::vector<engine::ParticleSet> &, const std::vector<nlohmann::json> &, const nlohmann::json &,
+                   const fs::path &, const std::string &) {
+  unavailable();
+  return 0;
+}
 void heightmap(const LayerResult &, const fs::path &, const std::string &) { unavailable(); }
 void parity(const analysis::Report &, const std::vector<std::string> &, const fs::path &) { unavailable(); }
 void surfaces(const analysis::GridMap &, const std::vector<std::string> &, const analysis::Table &, const fs::path &) {
@@ -59,6 +68,22 @@ template <class F> void guarded(const fs::path &png, F &&draw) {
   } catch (const std::exception &e) {
     spdlog::warn("figure {} not written: {}", png.string(), e.what());
   }
+}
+
+// A figure's options: its default size, scaled to the stage's width when `render: {width: W}` sets
+// one (the aspect stays), and the stage's vector copy.
+render::Options sized(int width, int height, const std::string &title = "") {
+  const Style &style = current_style();
+  render::Options o;
+  o.width = width;
+  o.height = height;
+  if (style.width > 0) {
+    o.height = std::max(100, int(std::lround(double(height) * style.width / width)));
+    o.width = style.width;
+  }
+  o.title = title;
+  o.vector_format = style.vector;
+  return o;
 }
 
 // Grid rows run with the first input slowest; the renderer wants omega slowest (f[iw * nu + iu]).
@@ -92,44 +117,64 @@ render::Quantity quantity(const std::string &name, const std::string &unit) {
 
 }  // namespace
 
-void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const fs::path &png, const std::string &title) {
-  guarded(png, [&] {
-    render::SnapshotInput in;
-    in.x = p.x;
-    in.y = p.y;
-    in.z = p.z;
-    in.r = p.radius;
-    in.speed.resize(p.size(), 0.0);
-    if (p.vx.size() == p.size())
-      for (std::size_t i = 0; i < p.size(); ++i) in.speed[i] = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
-    const auto &d = scene.at("domain");
-    in.domain.hi = {d.at("length").get<double>(), d.at("width").get<double>(), d.at("height").get<double>()};
-    const auto &s = scene.at("spreader");
-    const auto &sp = s.at("params");
-    const double end = sp.value("end", 0.0) > sp.value("start", 0.0) ? sp.value("end", 0.0)
-                                                                     : sp.value("start", 0.0) + sp.value("travel", 0.0);
-    if (s.value("use", "") == "roller") {
-      const double r = sp.value("diameter", 0.01) / 2;
-      in.spreader.shape = "cylinder";
-      in.spreader.radius = r;
-      in.spreader.centre = {end, in.domain.hi[1] / 2, sp.value("gap", 0.0) + r};
-      in.spreader.length = sp.value("length", in.domain.hi[1]);
-    } else if (s.value("use", "") == "blade") {
-      const double h = sp.value("height", 0.005);
-      in.spreader.shape = "blade";
-      in.spreader.thickness = sp.value("thickness", 0.001);
-      in.spreader.height = h;
-      in.spreader.length = sp.value("length", in.domain.hi[1]);
-      in.spreader.centre = {end, in.domain.hi[1] / 2, sp.value("gap", 0.0) + h / 2};
-    } else {
-      in.spreader.shape = "";
-    }
-    render::Options opt;
-    opt.width = 1600;
-    opt.height = 900;
-    opt.title = title;
-    render::snapshot(in, png, opt);
+namespace {
+
+// The particles with the spreader drawn at `pose` ({x, z, angle} as case.json records it; absent:
+// where the spreader stops, unrotated).
+render::SnapshotInput snapshot_input(const engine::ParticleSet &p, const nlohmann::json &scene, const nlohmann::json &pose) {
+  render::SnapshotInput in;
+  in.x = p.x;
+  in.y = p.y;
+  in.z = p.z;
+  in.r = p.radius;
+  in.speed.resize(p.size(), 0.0);
+  if (p.vx.size() == p.size())
+    for (std::size_t i = 0; i < p.size(); ++i) in.speed[i] = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
+  const auto &d = scene.at("domain");
+  in.domain.hi = {d.at("length").get<double>(), d.at("width").get<double>(), d.at("height").get<double>()};
+  const auto &s = scene.at("spreader");
+  const auto &sp = s.at("params");
+  const double end = sp.value("end", 0.0) > sp.value("start", 0.0) ? sp.value("end", 0.0)
+                                                                   : sp.value("start", 0.0) + sp.value("travel", 0.0);
+  const double x = pose.is_object() ? pose.value("x", end) : end;
+  in.spreader.angle = pose.is_object() ? pose.value("angle", 0.0) : 0.0;
+  if (s.value("use", "") == "roller") {
+    const double r = sp.value("diameter", 0.01) / 2;
+    in.spreader.shape = "cylinder";
+    in.spreader.radius = r;
+    in.spreader.centre = {x, in.domain.hi[1] / 2, sp.value("gap", 0.0) + r};
+    in.spreader.length = sp.value("length", in.domain.hi[1]);
+  } else if (s.value("use", "") == "blade") {
+    const double h = sp.value("height", 0.005);
+    in.spreader.shape = "blade";
+    in.spreader.thickness = sp.value("thickness", 0.001);
+    in.spreader.height = h;
+    in.spreader.length = sp.value("length", in.domain.hi[1]);
+    in.spreader.centre = {x, in.domain.hi[1] / 2, sp.value("gap", 0.0) + h / 2};
+    in.spreader.angle = 0;
+  } else {
+    in.spreader.shape = "";
+  }
+  return in;
+}
+
+}  // namespace
+
+void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const fs::path &png, const std::string &title,
+              const nlohmann::json &pose) {
+  guarded(png, [&] { render::snapshot(snapshot_input(p, scene, pose), png, sized(1600, 900, title)); });
+}
+
+std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::vector<nlohmann::json> &poses,
+                   const nlohmann::json &scene, const fs::path &dir, const std::string &title) {
+  std::size_t written = 0;
+  guarded(dir / "frame_0000.png", [&] {
+    std::vector<render::SnapshotInput> in;
+    for (std::size_t k = 0; k < states.size(); ++k)
+      in.push_back(snapshot_input(states[k], scene, k < poses.size() ? poses[k] : nlohmann::json()));
+    written = render::animation_frames(in, dir, "frame", sized(1600, 900, title)).size();
   });
+  return written;
 }
 
 void heightmap(const LayerResult &layer, const fs::path &png, const std::string &title) {
@@ -141,11 +186,9 @@ void heightmap(const LayerResult &layer, const fs::path &png, const std::string 
     in.height = layer.height;
     in.origin = {layer.x0, layer.y0};
     in.cell = {layer.cell, layer.cell};
-    render::Options opt;
-    opt.width = 1400;
-    opt.height = std::max(500, std::min(1400, int(1400.0 * layer.ny / std::max<std::uint32_t>(1, layer.nx)) + 300));
-    opt.title = title;
-    render::heightmap(in, png, opt);
+    render::heightmap(in, png,
+                      sized(1400, std::max(500, std::min(1400, int(1400.0 * layer.ny / std::max<std::uint32_t>(1, layer.nx)) + 300)),
+                            title));
   });
 }
 
@@ -166,10 +209,7 @@ void parity(const analysis::Report &report, const std::vector<std::string> &outp
       }
       in.panels.push_back(std::move(panel));
     }
-    render::Options opt;
-    opt.width = 700 * int(std::max<std::size_t>(1, outputs.size()));
-    opt.height = 700;
-    render::parity(in, png, opt);
+    render::parity(in, png, sized(700 * int(std::max<std::size_t>(1, outputs.size())), 700));
   });
 }
 
@@ -190,10 +230,7 @@ void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &uni
         const auto split = data.has_column("split") ? data.texts("split") : std::vector<std::string>(u.size());
         for (std::size_t i = 0; i < u.size(); ++i) in.points.push_back({u[i], w[i], v[i], split[i] == "test"});
       }
-      render::Options opt;
-      opt.width = 1400;
-      opt.height = 1000;
-      render::surface(in, png, opt);
+      render::surface(in, png, sized(1400, 1000));
     });
   }
 }
@@ -222,11 +259,7 @@ void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, 
       in.optimum = {true, o.x(0), o.x(1), o.vs, o.rq};
       in.rq_target = o.rq_max;
     }
-    render::Options opt;
-    opt.width = 1600;
-    opt.height = 1100;
-    opt.title = "Process map: R_q (filled) and V_s (lines)";
-    render::process_map(in, png, opt);
+    render::process_map(in, png, sized(1600, 1100, "Process map: R_q (filled) and V_s (lines)"));
   });
 }
 
@@ -237,11 +270,7 @@ void tradeoff(const std::vector<TradeoffRow> &rows, double vs_scatter_percent, d
     for (const auto &r : rows) in.points.push_back({r.name, r.wall_seconds, r.vs_error_percent, r.rq_error_percent, r.reference});
     in.vs_scatter = vs_scatter_percent;
     in.rq_scatter = rq_scatter_percent;
-    render::Options opt;
-    opt.width = 1400;
-    opt.height = 1000;
-    opt.title = "Speed-accuracy trade: error against the reference over cost";
-    render::tradeoff(in, png, opt);
+    render::tradeoff(in, png, sized(1400, 1000, "Speed-accuracy trade: error against the reference over cost"));
   });
 }
 

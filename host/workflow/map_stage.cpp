@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/units.hpp"
 #include "workflow/mapping.hpp"
+#include "workflow/figure_style.hpp"
 #include "workflow/stage.hpp"
 #include "workflow/train_config.hpp"
 
@@ -52,10 +53,12 @@ class MapStage : public Stage {
         }
       }
     }
-    render_ = cfg["render"] ? cfg["render"].as<bool>(true) : true;
+    style_ = figures::read_style(cfg["render"], true, false, file, "map.render", diag);
+    render_ = style_.on;
   }
 
   void run(StageContext &ctx) override {
+    figures::use_style(style_);
     const fs::path model_json = ctx.run.train_dir(model_) / "model.json";
     if (!fs::exists(model_json))
       throw InputError("error: map: " + model_json.string() + " does not exist; run the train stage with model " + model_);
@@ -85,6 +88,7 @@ class MapStage : public Stage {
  private:
   std::string model_, grid_;
   std::vector<double> rq_max_;
+  figures::Style style_;
   bool render_ = true;
 };
 

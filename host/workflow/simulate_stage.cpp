@@ -15,6 +15,7 @@
 #include "workflow/case_runner.hpp"
 #include "workflow/design.hpp"
 #include "workflow/executor_hook.hpp"
+#include "workflow/figure_style.hpp"
 #include "workflow/figures.hpp"
 #include "workflow/layer_eval.hpp"
 #include "workflow/progress.hpp"
@@ -30,7 +31,10 @@ class SimulateStage : public Stage {
     const std::string file = wf.file.string();
     for (const auto &kv : entry.config) {
       const std::string key = kv.first.as<std::string>();
-      if (key == "render") render_ = kv.second.as<bool>(true);
+      if (key == "render") {
+        style_ = figures::read_style(kv.second, true, true, file, "simulate.render", diag);
+        render_ = style_.on;
+      }
       if (key != "design" && key != "render")
         diag.error(Location::of(file, kv.first), "simulate." + key, "unknown key", "known: design, render");
     }
@@ -39,6 +43,7 @@ class SimulateStage : public Stage {
   }
 
   void run(StageContext &ctx) override {
+    figures::use_style(style_);
     if (design_.type == "adaptive") return run_adaptive_design(ctx, design_, render_);
     const std::size_t n = design_.cases.size();
     const auto &only_case = ctx.options.only_case;
@@ -167,14 +172,29 @@ class SimulateStage : public Stage {
 
  private:
   // The end state as a picture: cases/cNNN/snapshot.png.
+  // The final state with the spreader where it stopped, and with `render: {frames: true}` the frames of
+  // the snapshot series (case.json lists its files and the spreader's pose at each).
   static void snapshot(const CaseRequest &req) {
     try {
-      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, req.dir / "snapshot.png", figures::case_title(req.id, req.inputs));
+      const auto c = nlohmann::json::parse(read_text(req.dir / "case.json"));
+      const std::string title = figures::case_title(req.id, req.inputs);
+      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, req.dir / "snapshot.png", title,
+                        c.value("spreader_end", nlohmann::json()));
+      if (!figures::current_style().frames || !c.contains("series")) return;
+      std::vector<engine::ParticleSet> states;
+      std::vector<nlohmann::json> poses;
+      for (const auto &e : c["series"]) {
+        states.push_back(read_particle_file(req.dir / e["file"].get<std::string>()));
+        poses.push_back(e["spreader"]);
+      }
+      const auto n = figures::frames(states, poses, req.scene, req.dir / "frames", title);
+      spdlog::info("{}: {} frames in {}", req.id, n, (req.dir / "frames").string());
     } catch (const std::exception &e) {
       spdlog::warn("{}: snapshot not drawn: {}", req.id, e.what());
     }
   }
   Design design_;
+  figures::Style style_;
   bool render_ = true;
 };
 

@@ -22,6 +22,7 @@
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "workflow/case_once.hpp"
+#include "workflow/figure_style.hpp"
 #include "workflow/figures.hpp"
 #include "workflow/scene.hpp"
 #include "workflow/stage.hpp"
@@ -72,7 +73,8 @@ class TradeoffStage : public Stage {
         diag.error(Location::of(file, cfg["heaps"]), "tradeoff.heaps", "must be a whole number from 2 to 100",
                    "at least 2 heaps are needed to measure the scatter");
     }
-    render_ = cfg["render"] ? cfg["render"].as<bool>(false) : false;
+    style_ = figures::read_style(cfg["render"], false, false, file, "tradeoff.render", diag);
+    render_ = style_.on;
     const YAML::Node list = cfg["fidelities"];
     if (!list || !list.IsSequence() || list.size() < 2) {
       diag.error(Location::of(file, list ? list : cfg), "tradeoff.fidelities", "needs a list of at least 2 fidelities",
@@ -122,6 +124,7 @@ class TradeoffStage : public Stage {
   }
 
   void run(StageContext &ctx) override {
+    figures::use_style(style_);
     struct Result {
       std::vector<double> vs, rq, wall, psteps;
     };
@@ -200,6 +203,7 @@ class TradeoffStage : public Stage {
  private:
   std::vector<Fidelity> fidelities_;
   int heaps_ = 3;
+  figures::Style style_;
   bool render_ = false;
 };
 

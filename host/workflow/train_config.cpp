@@ -55,10 +55,11 @@ TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, Plugi
   try {
     if (cfg["folds"]) c.folds = cfg["folds"].as<std::size_t>();
     if (cfg["seed"]) c.seed = cfg["seed"].as<std::uint64_t>();
-    if (cfg["render"]) c.render = cfg["render"].as<bool>();
   } catch (const YAML::Exception &) {
-    diag.error(Location::of(file, cfg), "train", "folds and seed must be whole numbers, render true or false");
+    diag.error(Location::of(file, cfg), "train", "folds and seed must be whole numbers");
   }
+  c.style = figures::read_style(cfg["render"], true, false, file, "train.render", diag);
+  c.render = c.style.on;
   if (c.folds < 2) diag.error(Location::of(file, cfg["folds"]), "train.folds", "needs at least 2 folds");
   return c;
 }

@@ -8,6 +8,7 @@
 
 #include "core/diagnostics.hpp"
 #include "core/registry.hpp"
+#include "workflow/figure_style.hpp"
 #include "workflow/workflow.hpp"
 
 namespace spreadmap {
@@ -20,6 +21,7 @@ struct TrainConfig {
   std::size_t folds = 5;
   std::uint64_t seed = 1;
   bool render = true;
+  figures::Style style;  // render: true | false | {width, vector}
 };
 
 // model: bpnn | [bpnn, gp]; params: {...} (one model) or params: {bpnn: {...}, gp: {...}};

@@ -21,6 +21,7 @@ class TrainStage : public Stage {
   }
 
   void run(StageContext &ctx) override {
+    figures::use_style(config_.style);
     const fs::path csv = ctx.run.metrics_csv();
     if (!fs::exists(csv))
       throw InputError("error: train: " + csv.string() + " does not exist; run the characterise stage first");

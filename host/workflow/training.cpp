@@ -10,6 +10,7 @@
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/schema.hpp"
+#include "core/suggest.hpp"
 #include "workflow/figures.hpp"
 
 namespace spreadmap {
@@ -33,9 +34,11 @@ std::vector<std::size_t> usable_rows(const analysis::Table &t, const std::vector
   return rows;
 }
 
+// The unit of a column: from the units file, matched as column names are (case-insensitively).
 analysis::Variable variable(const std::string &name, const Eigen::VectorXd &v, const std::map<std::string, std::string> &units) {
-  const auto u = units.find(name);
-  return {name, u == units.end() ? "" : u->second, v.minCoeff(), v.maxCoeff()};
+  for (const auto &[k, unit] : units)
+    if (lower(k) == lower(name)) return {name, unit, v.minCoeff(), v.maxCoeff()};
+  return {name, "", v.minCoeff(), v.maxCoeff()};
 }
 
 }  // namespace
@@ -154,7 +157,13 @@ nlohmann::json surrogate_params(PluginRegistry &registry, const std::string &mod
 std::map<std::string, std::string> units_beside(const std::filesystem::path &table_csv) {
   std::map<std::string, std::string> units;
   const auto file = table_csv.parent_path() / (table_csv.stem().string() + ".units.json");
-  if (!std::filesystem::exists(file)) return units;
+  if (!std::filesystem::exists(file)) {
+    // a table from elsewhere: spreadmap's own names are SI by definition (metrics.csv's units)
+    units = {{"U", "m/s"}, {"omega", "rad/s"}, {"vs", "m^2/s"}, {"rq", "m"}, {"mean_height", "m"}, {"solid_thickness", "m"}};
+    spdlog::info("{}: no {} beside it: columns named U, omega, vs, rq, mean_height, solid_thickness are taken as SI "
+                 "(m/s, rad/s, m^2/s, m), the others as unitless", table_csv.string(), file.filename().string());
+    return units;
+  }
   try {
     const auto doc = nlohmann::json::parse(read_text(file));
     for (auto &[k, v] : doc.items())

@@ -186,3 +186,59 @@ TEST(KillAndResume, SigtermDuringTheFirstCaseStopsCleanly) {
   EXPECT_FALSE(finished(run / "cases" / case_id(n_cases - 1)));
   fs::remove_all(run);
 }
+
+namespace {
+
+// Two cases of the tiny workflow, U given as the text of the second.
+fs::path two_case_workflow(const fs::path &dir, const std::string &second_u) {
+  fs::create_directories(dir);
+  const fs::path wf = dir / "wf.yaml";
+  std::ofstream(wf) << "version: 1\nname: rerun\nscene:\n  preset: quick\n  threads: 1\n  domain: {length: 20 mm}\n"
+                       "  powder: {count: 300, heap_from: 6 mm, heap_to: 10 mm, settle_time: 0.02 s}\n"
+                       "  spreader: {use: roller, travel: 8 mm}\nstages:\n  - simulate:\n      render: false\n"
+                       "      design: {type: list, cases: [{U: 100 mm/s}, {U: "
+                    << second_u << "}]}\n";
+  return wf;
+}
+
+}  // namespace
+
+TEST(Rerun, OnlyWhatChangedOrWasDamagedIsRecomputedAndForceRecomputesAll) {
+  const fs::path dir = fs::temp_directory_path() / ("spreadmap_rerun_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const fs::path run = dir / "out";
+  const t::Command command{{"run", two_case_workflow(dir, "90 mm/s").string(), "--out", run.string()}, {}, {}, {}};
+  ASSERT_EQ(t::run(command).exit_code, 0);
+  const fs::path c0 = run / "cases" / case_id(0), c1 = run / "cases" / case_id(1);
+  const FileId state0 = identify(c0 / "state.vtp"), state1 = identify(c1 / "state.vtp");
+
+  // 1. the second case's speed changes: it runs again, the first keeps its files
+  two_case_workflow(dir, "80 mm/s");
+  const t::Outcome changed = t::run(command);
+  ASSERT_EQ(changed.exit_code, 0) << changed.describe();
+  EXPECT_TRUE(contains(changed.err, "2 cases, 1 to run, 1 finished already")) << changed.err;
+  EXPECT_EQ(identify(c0 / "state.vtp"), state0);
+  EXPECT_NE(identify(c1 / "state.vtp"), state1);
+  EXPECT_EQ(nlohmann::json::parse(slurp(c1 / "case.json"))["inputs"]["U"].get<double>(), 0.08);
+
+  // 2. a damaged result (a state cut short, as by a node that died while copying) is recomputed
+  const std::string whole = slurp(c0 / "state.vtp");
+  std::ofstream(c0 / "state.vtp", std::ios::binary | std::ios::trunc) << whole.substr(0, whole.size() / 2);
+  const FileId state1_now = identify(c1 / "state.vtp");
+  const t::Outcome damaged = t::run(command);
+  ASSERT_EQ(damaged.exit_code, 0) << damaged.describe();
+  EXPECT_TRUE(contains(damaged.err, "2 cases, 1 to run, 1 finished already")) << damaged.err;
+  EXPECT_EQ(slurp(c0 / "state.vtp"), whole) << "deterministic: the recomputed state is the same file";
+  EXPECT_EQ(identify(c1 / "state.vtp"), state1_now);
+
+  // 3. --force recomputes every case
+  t::Command forced = command;
+  forced.args.push_back("--force");
+  const FileId before0 = identify(c0 / "state.vtp"), before1 = identify(c1 / "state.vtp");
+  const t::Outcome all = t::run(forced);
+  ASSERT_EQ(all.exit_code, 0) << all.describe();
+  EXPECT_TRUE(contains(all.err, "2 cases, 2 to run, 0 finished already")) << all.err;
+  EXPECT_NE(identify(c0 / "state.vtp").inode, before0.inode);
+  EXPECT_NE(identify(c1 / "state.vtp").inode, before1.inode);
+  fs::remove_all(dir);
+}

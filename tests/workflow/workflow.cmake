@@ -28,3 +28,8 @@ spreadmap_workflow_test(resume SOURCES ${CMAKE_CURRENT_LIST_DIR}/resume_test.cpp
 spreadmap_workflow_test(plugin_sdk SOURCES ${CMAKE_CURRENT_LIST_DIR}/plugin_sdk_test.cpp TIMEOUT 300)
 target_compile_definitions(test_workflow_plugin_sdk PRIVATE
   SPREADMAP_CMAKE_COMMAND="${CMAKE_COMMAND}" SPREADMAP_CXX_COMPILER="${CMAKE_CXX_COMPILER}")
+spreadmap_workflow_test(stage_commands SOURCES ${CMAKE_CURRENT_LIST_DIR}/stage_commands_test.cpp TIMEOUT 300)
+target_link_libraries(test_workflow_stage_commands PRIVATE Eigen3::Eigen)
+if(TARGET spreadmap_render)
+  target_compile_definitions(test_workflow_stage_commands PRIVATE SPREADMAP_TEST_FIGURES=1)
+endif()

@@ -1,0 +1,197 @@
+// Each stage on the user's own files, through the real binary: `spreadmap characterise` on a CSV
+// whose layer has a closed form, `spreadmap train` on a CSV of an analytic response, `spreadmap map`
+// and `spreadmap query` on the model it wrote.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <numbers>
+#include <sstream>
+
+#include "unit/surrogate_study_function.hpp"
+#include "workflow/process.hpp"
+
+namespace fs = std::filesystem;
+namespace t = spreadmap::test;
+
+namespace {
+
+class StageCommands : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("spreadmap_stage_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+            std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    if (!HasFailure()) fs::remove_all(dir_);
+  }
+  t::Outcome spreadmap(std::vector<std::string> args) { return t::run({std::move(args), {}, {}, {}}); }
+  fs::path dir_;
+};
+
+nlohmann::json json_of(const t::Outcome &r) {
+  try {
+    return nlohmann::json::parse(r.out);
+  } catch (const std::exception &e) {
+    ADD_FAILURE() << "not JSON: " << e.what() << "\n" << r.describe();
+    return nullptr;
+  }
+}
+
+}  // namespace
+
+TEST_F(StageCommands, CharacteriseASphereAsJsonMatchesItsClosedForm) {
+  // One sphere of radius R resting on the substrate in a 2 mm x 2 mm region: the volume under its
+  // top surface is pi R^2 R + 2/3 pi R^3 = 5/3 pi R^3, its solid volume 4/3 pi R^3, its footprint pi R^2.
+  const double R = 125e-6, area = 2e-3 * 2e-3, U = 0.1;
+  std::ofstream(dir_ / "layer.csv") << "x,y,z,radius\n1e-3,1e-3," << R << "," << R << "\n";
+  const auto r = spreadmap({"characterise", (dir_ / "layer.csv").string(), "--region", "0:2mm,0mm:2mm", "--grid", "2um",
+                            "--U", "100 mm/s", "--format", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.describe();
+  const auto j = json_of(r);
+  const double mean = 5.0 / 3.0 * std::numbers::pi * R * R * R / area;
+  EXPECT_NEAR(j["mean_height"].get<double>(), mean, 2e-3 * mean);
+  EXPECT_NEAR(j["vs"].get<double>(), j["mean_height"].get<double>() * U, 1e-12 * mean * U);
+  EXPECT_NEAR(j["coverage"].get<double>(), std::numbers::pi * R * R / area, 2e-3 * std::numbers::pi * R * R / area);
+  const double solid = 4.0 / 3.0 * std::numbers::pi * R * R * R / area;
+  EXPECT_NEAR(j["solid_thickness"].get<double>(), solid, 1e-9 * solid);
+  EXPECT_GT(j["rq"].get<double>(), 0.0);
+}
+
+TEST_F(StageCommands, CharacteriseAnEmptyRegionReportsUndefinedAsNull) {
+  std::ofstream(dir_ / "layer.csv") << "x,y,z,radius\n1e-3,1e-3,125e-6,125e-6\n";
+  const auto r = spreadmap({"characterise", (dir_ / "layer.csv").string(), "--region", "10mm:12mm,0:2mm", "--format", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.describe();
+  const auto j = json_of(r);
+  EXPECT_EQ(j["mean_height"].get<double>(), 0.0);
+  EXPECT_EQ(j["rq"].get<double>(), 0.0);
+  EXPECT_EQ(j["coverage"].get<double>(), 0.0);
+  EXPECT_TRUE(j["packing_fraction"].is_null()) << j.dump();
+  EXPECT_FALSE(j.contains("vs") && !j["vs"].is_null()) << "no --U: V_s is not known";
+  EXPECT_NE(r.err.find("warn"), std::string::npos) << "an empty region is worth a warning:\n" << r.err;
+}
+
+TEST_F(StageCommands, TrainMapAndQueryOnAUsersTable) {
+  // The study's 5 x 9 design of the analytic stand-in (tests/unit/surrogate_study_function.hpp).
+  const Eigen::MatrixXd x = t::study_grid(), y = t::study_outputs(x);
+  {
+    std::ofstream csv(dir_ / "data.csv");
+    csv.precision(17);
+    csv << "case,U,omega,Vs,Rq\n";
+    for (Eigen::Index i = 0; i < x.rows(); ++i) csv << "c" << i << "," << x(i, 0) << "," << x(i, 1) << "," << y(i, 0) << "," << y(i, 1) << "\n";
+  }
+  const fs::path model_dir = dir_ / "gp";
+  const auto trained = spreadmap({"train", (dir_ / "data.csv").string(), "--inputs", "U,omega", "--outputs", "vs,rq",
+                                  "--model", "gp", "--out", model_dir.string(), "--format", "json", "--no-figures"});
+  ASSERT_EQ(trained.exit_code, 0) << trained.describe();
+  const auto report = json_of(trained);
+  EXPECT_EQ(report["n_train"].get<int>(), 35);
+  EXPECT_EQ(report["n_test"].get<int>(), 10);
+  for (const char *o : {"vs", "rq"}) {
+    EXPECT_LT(report["outputs"][o]["nrmse_test"].get<double>(), 1.0) << o;  // the gp bound of the surrogate tests
+    EXPECT_GT(report["outputs"][o]["r_test"].get<double>(), 0.99) << o;
+  }
+  ASSERT_TRUE(fs::exists(model_dir / "model.json"));
+
+  const fs::path map_dir = dir_ / "map";
+  const auto mapped = spreadmap({"map", (model_dir / "model.json").string(), "--grid", "31x41", "--rq-max", "105um",
+                                 "--out", map_dir.string(), "--no-figures"});
+  ASSERT_EQ(mapped.exit_code, 0) << mapped.describe();
+  std::ifstream map_csv(map_dir / "map.csv");
+  std::size_t lines = 0;
+  for (std::string line; std::getline(map_csv, line);) ++lines;
+  EXPECT_EQ(lines, 1u + 31u * 41u);
+  const auto optimum = nlohmann::json::parse(std::ifstream(map_dir / "optimum.json"));
+  ASSERT_EQ(optimum["optima"].size(), 1u) << optimum.dump();
+  const auto &best = optimum["optima"][0];
+  ASSERT_TRUE(best["found"].get<bool>()) << best.dump();
+
+  // The best setting for R_q <= 105 um on the analytic function itself, on the same grid: the map's
+  // optimum must be that grid point or a neighbour.
+  double best_vs = -1, best_u = 0, best_w = 0;
+  for (int i = 0; i < 31; ++i)
+    for (int k = 0; k < 41; ++k) {
+      const double u = 0.04 + 0.06 * i / 30, w = -20 + 40.0 * k / 40;
+      if (t::study_rq(u, w) <= 105e-6 && t::study_vs(u, w) > best_vs) best_vs = t::study_vs(u, w), best_u = u, best_w = w;
+    }
+  // grid steps: 2 mm/s in U, 1 rad/s in omega
+  EXPECT_NEAR(best["inputs"]["U"].get<double>(), best_u, 0.06 / 30 * 1.01) << best.dump();
+  EXPECT_NEAR(best["inputs"]["omega"].get<double>(), best_w, 1.0 * 1.01) << best.dump();
+  const auto query = spreadmap({"query", (model_dir / "model.json").string(), "--best", "--rq-max", "105um"});
+  ASSERT_EQ(query.exit_code, 0) << query.describe();
+  const auto at = spreadmap({"query", (model_dir / "model.json").string(), "--at", "U=70mm/s,omega=-5rad/s"});
+  ASSERT_EQ(at.exit_code, 0) << at.describe();
+  EXPECT_NE(at.out.find("mm"), std::string::npos) << "predictions carry units:\n" << at.out;
+  std::printf("analytic optimum U = %.4g m/s, omega = %.4g rad/s, V_s = %.4g m^2/s\nquery: %s", best_u, best_w, best_vs,
+              query.out.c_str());
+}
+
+TEST_F(StageCommands, RenderAStateAtTheRequestedSize) {
+  // A small heap as CSV; the PNG's header gives its size (big-endian width and height at bytes 16-23).
+  {
+    std::ofstream csv(dir_ / "heap.csv");
+    csv << "x,y,z,radius\n";
+    for (int i = 0; i < 40; ++i) csv << 0.3e-3 * (i % 10) << "," << 0.3e-3 * (i / 10) << ",1.25e-4,1.25e-4\n";
+  }
+  const fs::path png = dir_ / "heap.png";
+  const auto r = spreadmap({"render", (dir_ / "heap.csv").string(), "--out", png.string(), "--width", "800", "--title", "heap"});
+#ifndef SPREADMAP_TEST_FIGURES
+  // a build without VTK says so and names the fix
+  EXPECT_EQ(r.exit_code, 2) << r.describe();
+  EXPECT_NE(r.err.find("this build has no VTK (configure with SPREADMAP_ENABLE_VTK=ON)"), std::string::npos) << r.err;
+  return;
+#endif
+  ASSERT_EQ(r.exit_code, 0) << r.describe();
+  std::ifstream in(png, std::ios::binary);
+  std::string head(24, '\0');
+  in.read(head.data(), 24);
+  ASSERT_EQ(head.substr(1, 3), "PNG");
+  auto be32 = [&](int at) {
+    return (std::uint32_t(std::uint8_t(head[at])) << 24) | (std::uint32_t(std::uint8_t(head[at + 1])) << 16) |
+           (std::uint32_t(std::uint8_t(head[at + 2])) << 8) | std::uint32_t(std::uint8_t(head[at + 3]));
+  };
+  EXPECT_EQ(be32(16), 800u);
+  EXPECT_EQ(be32(20), 450u);  // the snapshot's 1600 x 900 aspect
+  const auto bad = spreadmap({"render", (dir_ / "heap.csv").string(), "--out", png.string(), "--width", "20"});
+  EXPECT_EQ(bad.exit_code, 2) << bad.describe();
+  EXPECT_NE(bad.err.find("--width 20"), std::string::npos) << bad.err;
+}
+
+TEST_F(StageCommands, SimulateDrawsFramesOfTheSeriesAtTheStageWidth) {
+  // render: {width, frames}: the snapshot and one frame per state of the series (3 snapshots and the
+  // final state), all at the stage's width.
+  std::ofstream(dir_ / "wf.yaml") << "version: 1\nname: frames\nscene:\n  preset: quick\n  domain: {length: 20 mm}\n"
+                                     "  powder: {count: 200, heap_from: 6 mm, heap_to: 10 mm, settle_time: 0.02 s}\n"
+                                     "  spreader: {use: roller, travel: 6 mm}\n  time: {snapshots: 3}\nstages:\n"
+                                     "  - simulate:\n      render: {width: 640, frames: true}\n"
+                                     "      design: {type: list, cases: [{U: 100 mm/s}]}\n";
+  const auto r = spreadmap({"run", (dir_ / "wf.yaml").string(), "--out", (dir_ / "out").string()});
+  ASSERT_EQ(r.exit_code, 0) << r.describe();
+  const fs::path c = dir_ / "out" / "cases" / "c000";
+  const auto record = nlohmann::json::parse(std::ifstream(c / "case.json"));
+  ASSERT_EQ(record["series"].size(), 4u) << record.dump();
+  double last_x = -1;
+  for (const auto &e : record["series"]) {  // the roller moves forward from frame to frame
+    EXPECT_GT(e["spreader"]["x"].get<double>(), last_x);
+    last_x = e["spreader"]["x"];
+  }
+#ifndef SPREADMAP_TEST_FIGURES
+  // a build without VTK says once that it draws nothing, and the case's numbers are all there
+  EXPECT_NE(r.err.find("this build has no VTK"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(c / "snapshot.png"));
+  return;
+#endif
+  for (const char *f : {"snapshot.png", "frames/frame_0000.png", "frames/frame_0003.png"}) {
+    std::ifstream in(c / f, std::ios::binary);
+    std::string head(24, '\0');
+    ASSERT_TRUE(in.read(head.data(), 24)) << f;
+    const std::uint32_t w = (std::uint32_t(std::uint8_t(head[18])) << 8) | std::uint8_t(head[19]);
+    EXPECT_EQ(w, 640u) << f;
+  }
+  EXPECT_FALSE(fs::exists(c / "frames" / "frame_0004.png"));
+}
