@@ -5,6 +5,7 @@
 #include <engine/binary_io.hpp>
 #include <engine/simulation.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -12,7 +13,7 @@ namespace spreadmap::engine {
 
 namespace {
 constexpr char magic[16] = "spreadmap-ckpt";
-constexpr std::uint32_t format_version = 1;
+constexpr std::uint32_t format_version = 2;  // 2: sleeping (mobile, calm, the sleep region)
 }  // namespace
 
 template <class Real> void Simulation<Real>::save_checkpoint(const std::filesystem::path &path) const {
@@ -39,6 +40,8 @@ template <class Real> void Simulation<Real>::save_checkpoint(const std::filesyst
   w.value(next_id_);
   w.value(counters_.removed);
   w.value(counters_.list_builds);
+  w.value(sleep_x_max_);
+  w.value<std::uint64_t>(asleep_at_build_);
 
   auto &p = const_cast<ParticleArrays<Real> &>(p_);
   p.for_each_real([&](std::vector<Real> &c) { w.array(c); });
@@ -105,6 +108,8 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   counters_ = RunCounters{};
   counters_.removed = r.value<std::uint64_t>();
   counters_.list_builds = r.value<std::uint64_t>();
+  sleep_x_max_ = r.value<double>();
+  asleep_at_build_ = r.value<std::uint64_t>();
 
   p_.for_each_real([&](std::vector<Real> &c) {
     r.array(c);
@@ -121,6 +126,8 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
       list_.hist.size() != list_.nbr.size() * pair_law_.ops->history)
     r.fail("an inconsistent neighbour list");
   list_.restore_mirror(settings_.pairs_once, pair_law_.ops->history);
+  asleep_ = std::size_t(std::count(p_.mobile.begin(), p_.mobile.end(), Real(0)));
+  if (settings_.sleep) find_border();
   for (auto &ge : geometries_) ge.near_valid = false;  // searched again at the next evaluation
   forces_zeroed_ = false;
   for (auto &pl : planes_) {

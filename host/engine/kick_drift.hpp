@@ -4,6 +4,8 @@
 // up); x += dt v, wrapped along periodic axes; the largest squared displacement since the list
 // build. Second (after the forces): the same kick, and a count of particles too fast or not finite.
 #pragma once
+#include <spreadmap/hd.hpp>
+
 #include <cstdint>
 
 namespace spreadmap::engine {
@@ -11,8 +13,10 @@ namespace spreadmap::engine {
 template <class Real> struct KickDrift {
   Real *x, *y, *z, *vx, *vy, *vz, *fx, *fy, *fz, *wx, *wy, *wz, *tx, *ty, *tz;
   const Real *x0, *y0, *z0, *inv_m, *inv_i;
+  const Real *mobile;  // 1 integrated, 0 asleep: an asleep particle keeps v = w = 0 and its place
   Real half_dt, dt, g[3], lo[3], hi[3], len[3];
   bool periodic[3], rotate;
+  bool sleeping;  // some particle may be asleep: mobile is read (else every particle is integrated)
 };
 
 // What a range of particles reports: particles outside an open axis (with finite positions), non-finite
@@ -43,28 +47,40 @@ template <class Real, bool Periodic> inline Real moved_axis(Real pos, Real ref, 
   }
 }
 
-template <class Real, bool PX, bool PY, bool PZ, bool Rotate>
+// One half kick of particle i: w += dt/2 T/I (when rotating), v += dt/2 (F/m + g); when some may be
+// asleep, both times its mobility (1, or 0 asleep: x * 1 is x exactly, so an awake particle gets the
+// plain scheme's numbers).
+template <class Real, bool Rotate, bool Sleep> SM_HD void half_kick(const KickDrift<Real> &k, long long i) {
+  const Real h = k.half_dt;
+  auto kick = [&](Real v, Real a) {
+    if constexpr (Sleep) return (v + h * a) * k.mobile[i];
+    else return v + h * a;
+  };
+  if constexpr (Rotate) {
+    k.wx[i] = kick(k.wx[i], k.tx[i] * k.inv_i[i]);
+    k.wy[i] = kick(k.wy[i], k.ty[i] * k.inv_i[i]);
+    k.wz[i] = kick(k.wz[i], k.tz[i] * k.inv_i[i]);
+  }
+  k.vx[i] = kick(k.vx[i], k.fx[i] * k.inv_m[i] + k.g[0]);
+  k.vy[i] = kick(k.vy[i], k.fy[i] * k.inv_m[i] + k.g[1]);
+  k.vz[i] = kick(k.vz[i], k.fz[i] * k.inv_m[i] + k.g[2]);
+}
+
+template <class Real, bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>
 void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
   std::uint32_t escaped = 0, nonfinite = 0;
   Real largest = 0;
   // Locals: stores through the arrays cannot then be taken to change them.
   Real *x = k.x, *y = k.y, *z = k.z, *vx = k.vx, *vy = k.vy, *vz = k.vz, *fx = k.fx, *fy = k.fy, *fz = k.fz;
-  Real *wx = k.wx, *wy = k.wy, *wz = k.wz, *tx = k.tx, *ty = k.ty, *tz = k.tz;
-  const Real *x0 = k.x0, *y0 = k.y0, *z0 = k.z0, *inv_m = k.inv_m, *inv_i = k.inv_i;
-  const Real h = k.half_dt, dt = k.dt, gx = k.g[0], gy = k.g[1], gz = k.g[2];
+  Real *tx = k.tx, *ty = k.ty, *tz = k.tz;
+  const Real *x0 = k.x0, *y0 = k.y0, *z0 = k.z0;
+  const Real dt = k.dt;
   const Real lx = k.lo[0], ly = k.lo[1], lz = k.lo[2], hx = k.hi[0], hy = k.hi[1], hz = k.hi[2];
   const Real Lx = k.len[0], Ly = k.len[1], Lz = k.len[2];
 #pragma omp simd reduction(+ : escaped, nonfinite) reduction(max : largest)
   for (long long i = begin; i < end; ++i) {
-    if constexpr (Rotate) {
-      wx[i] += h * tx[i] * inv_i[i];
-      wy[i] += h * ty[i] * inv_i[i];
-      wz[i] += h * tz[i] * inv_i[i];
-    }
-    const Real ux = vx[i] + h * (fx[i] * inv_m[i] + gx);
-    const Real uy = vy[i] + h * (fy[i] * inv_m[i] + gy);
-    const Real uz = vz[i] + h * (fz[i] * inv_m[i] + gz);
-    vx[i] = ux; vy[i] = uy; vz[i] = uz;
+    half_kick<Real, Rotate, Sleep>(k, i);
+    const Real ux = vx[i], uy = vy[i], uz = vz[i];
     fx[i] = 0; fy[i] = 0; fz[i] = 0;
     tx[i] = 0; ty[i] = 0; tz[i] = 0;
     std::uint32_t out = 0;
@@ -85,24 +101,14 @@ void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, 
   result.largest = result.largest > largest ? result.largest : largest;
 }
 
-template <class Real, bool Rotate>
+template <class Real, bool Rotate, bool Sleep>
 std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
-  Real *vx = k.vx, *vy = k.vy, *vz = k.vz, *wx = k.wx, *wy = k.wy, *wz = k.wz;
-  const Real *fx = k.fx, *fy = k.fy, *fz = k.fz, *tx = k.tx, *ty = k.ty, *tz = k.tz, *inv_m = k.inv_m,
-             *inv_i = k.inv_i;
-  const Real h = k.half_dt, gx = k.g[0], gy = k.g[1], gz = k.g[2];
+  const Real *vx = k.vx, *vy = k.vy, *vz = k.vz, *wx = k.wx, *wy = k.wy, *wz = k.wz;
   std::uint32_t bad = 0;
 #pragma omp simd reduction(+ : bad)
   for (long long i = begin; i < end; ++i) {
-    if constexpr (Rotate) {
-      wx[i] += h * tx[i] * inv_i[i];
-      wy[i] += h * ty[i] * inv_i[i];
-      wz[i] += h * tz[i] * inv_i[i];
-    }
-    const Real ux = vx[i] + h * (fx[i] * inv_m[i] + gx);
-    const Real uy = vy[i] + h * (fy[i] * inv_m[i] + gy);
-    const Real uz = vz[i] + h * (fz[i] * inv_m[i] + gz);
-    vx[i] = ux; vy[i] = uy; vz[i] = uz;
+    half_kick<Real, Rotate, Sleep>(k, i);
+    const Real ux = vx[i], uy = vy[i], uz = vz[i];
     const Real v2 = ux * ux + uy * uy + uz * uz;
     const Real w2 = wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i];
     bad += (!(v2 <= limit2) | !((w2 - w2) == 0)) ? 1u : 0u;  // NaN fails the comparison; inf - inf is NaN
@@ -111,37 +117,30 @@ std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long 
 }
 }  // namespace detail
 
+// Calls f.template operator()<b...>() with the runtime flags turned into template arguments, so that
+// each combination gets a loop of its own without a branch left in it.
+template <bool... Fixed, class F> void with_flags(F &&f) { f.template operator()<Fixed...>(); }
+template <bool... Fixed, class F, class... Rest> void with_flags(F &&f, bool first, Rest... rest) {
+  if (first) with_flags<Fixed..., true>(f, rest...);
+  else with_flags<Fixed..., false>(f, rest...);
+}
+
 // Second half kick of particles [begin, end); returns how many are faster than sqrt(limit2) or have
 // a non-finite velocity or spin.
 template <class Real>
 std::uint32_t kick_check(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
-  return k.rotate ? detail::kick_check_range<Real, true>(k, limit2, begin, end)
-                  : detail::kick_check_range<Real, false>(k, limit2, begin, end);
+  std::uint32_t bad = 0;
+  with_flags([&]<bool Rotate, bool Sleep>() { bad = detail::kick_check_range<Real, Rotate, Sleep>(k, limit2, begin, end); },
+             k.rotate, k.sleeping);
+  return bad;
 }
 
 // First half kick and drift of particles [begin, end); adds to `result`.
 template <class Real>
 void kick_drift(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
-  const int code = (k.periodic[0] ? 1 : 0) | (k.periodic[1] ? 2 : 0) | (k.periodic[2] ? 4 : 0) | (k.rotate ? 8 : 0);
-  using detail::kick_drift_range;
-  switch (code) {
-    case 0: return kick_drift_range<Real, false, false, false, false>(k, begin, end, result);
-    case 1: return kick_drift_range<Real, true, false, false, false>(k, begin, end, result);
-    case 2: return kick_drift_range<Real, false, true, false, false>(k, begin, end, result);
-    case 3: return kick_drift_range<Real, true, true, false, false>(k, begin, end, result);
-    case 4: return kick_drift_range<Real, false, false, true, false>(k, begin, end, result);
-    case 5: return kick_drift_range<Real, true, false, true, false>(k, begin, end, result);
-    case 6: return kick_drift_range<Real, false, true, true, false>(k, begin, end, result);
-    case 7: return kick_drift_range<Real, true, true, true, false>(k, begin, end, result);
-    case 8: return kick_drift_range<Real, false, false, false, true>(k, begin, end, result);
-    case 9: return kick_drift_range<Real, true, false, false, true>(k, begin, end, result);
-    case 10: return kick_drift_range<Real, false, true, false, true>(k, begin, end, result);
-    case 11: return kick_drift_range<Real, true, true, false, true>(k, begin, end, result);
-    case 12: return kick_drift_range<Real, false, false, true, true>(k, begin, end, result);
-    case 13: return kick_drift_range<Real, true, false, true, true>(k, begin, end, result);
-    case 14: return kick_drift_range<Real, false, true, true, true>(k, begin, end, result);
-    default: return kick_drift_range<Real, true, true, true, true>(k, begin, end, result);
-  }
+  with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>() {
+    detail::kick_drift_range<Real, PX, PY, PZ, Rotate, Sleep>(k, begin, end, result);
+  }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate, k.sleeping);
 }
 
 }  // namespace spreadmap::engine

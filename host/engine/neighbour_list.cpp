@@ -28,7 +28,8 @@ int axis_neighbours(int c, int n, bool periodic, int out[3]) {
 template <class Real>
 void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid,
                                 const std::vector<std::uint32_t> &cell_start, const std::vector<std::uint32_t> &cell,
-                                const Domain &domain, Real skin, unsigned history, bool with_mirror) {
+                                const Domain &domain, Real skin, unsigned history, bool with_mirror,
+                                const Real *mobile) {
   start.swap(old_start_);
   nbr.swap(old_nbr_);
   hist.swap(old_hist_);
@@ -74,6 +75,8 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
         for (int q = 0; q < n_ranges; ++q) candidates += ranges[q].end - ranges[q].begin;
       }
       const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i];
+      // sleeping (mobile given): two sleeping particles are not listed; symmetric, as the list is
+      const Real awake_i = mobile ? mobile[i] : Real(1);
       // Room for every candidate, then written without a branch (a kept neighbour advances the end).
       const std::size_t first = buf.size();
       buf.resize(first + candidates);
@@ -86,7 +89,8 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
           const Real dz = wrap(zi - p.z[j], len[2], per[2]);
           const Real reach = (ri + p.r[j]) + skin;  // symmetric in i and j: the list is, too
           out[count] = j;
-          count += (dx * dx + dy * dy + dz * dz < reach * reach) & (j != i) ? 1u : 0u;
+          const bool listed = !mobile || awake_i > 0 || mobile[j] > 0;
+          count += (dx * dx + dy * dy + dz * dz < reach * reach) & (j != i) & listed ? 1u : 0u;
         }
       }
       buf.resize(first + count);

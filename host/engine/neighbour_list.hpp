@@ -24,7 +24,7 @@ template <class Real> class NeighbourList {
   // the CPU loop that evaluates each pair once (laws without history, see spreadmap/pair_once.hpp).
   void build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid, const std::vector<std::uint32_t> &cell_start,
              const std::vector<std::uint32_t> &cell, const Domain &domain, Real skin, unsigned history,
-             bool with_mirror = false);
+             bool with_mirror = false, const Real *mobile = nullptr);
 
   PairList<Real> view() {
     const bool once = has_mirror_ && !nbr.empty();

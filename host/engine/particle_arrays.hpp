@@ -16,17 +16,20 @@ template <class Real> struct ParticleArrays {
   std::vector<Real> x0, y0, z0;                        // positions at the last list build
   std::vector<std::uint32_t> id;                       // stable identity
   std::vector<std::uint32_t> list_index;               // index in the current list, no_index if new
+  std::vector<Real> mobile;                            // 1 integrated, 0 asleep (Settings::sleep)
+  std::vector<std::uint32_t> calm;                     // checks in a row at rest (Settings::sleep)
 
   std::size_t size() const { return x.size(); }
 
   template <class F> void for_each_real(F &&f) {
     for (auto *c : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz, &r, &m, &inv_m, &inv_i, &fx, &fy, &fz, &tx, &ty, &tz,
-                    &x0, &y0, &z0})
+                    &x0, &y0, &z0, &mobile})
       f(*c);
   }
   template <class F> void for_each_index(F &&f) {
     f(id);
     f(list_index);
+    f(calm);
   }
   void resize(std::size_t n) {
     for_each_real([n](std::vector<Real> &c) { c.resize(n, Real(0)); });

@@ -45,6 +45,20 @@ struct Settings {
   // depend on it (the engine is deterministic for any thread count). 0: always all threads.
   std::size_t parallel_min_particles = 2000;
 
+  // Sleeping particles (off by default). A particle below x = set_sleep_region()'s bound that is slower
+  // than sleep_speed (the surface speed of its spin too) at sleep_checks checks in a row, one every
+  // sleep_check_every steps, falls asleep: it is no longer integrated (it stays exactly where it is, at
+  // rest), and a pair of two sleeping particles leaves the neighbour list. It wakes when a touching
+  // neighbour moves faster than sleep_speed, or a geometry or a moving plane wall touches it. Needs a
+  // pair law without history (the tangential springs of two sleeping spheres are not kept).
+  bool sleep = false;
+  double sleep_speed = 1e-3;  // [m/s]
+  std::uint32_t sleep_checks = 10;
+  std::uint32_t sleep_check_every = 100;
+
+  // For benchmarks and tests: integrate rotation even when no contact law makes torque.
+  bool force_rotation = false;
+
   // Where the engine says what it decided (rotation skipped, time step chosen). Empty: spdlog::info.
   std::function<void(const std::string &)> log;
 };

@@ -68,6 +68,13 @@ Simulation<Real>::Simulation(const Domain &domain, ContactLaw pair_law, Settings
                                  settings_.dt, settings_.dt_safety));
   if (!(settings_.overlap_limit > 0) || settings_.check_every == 0)
     throw SetupError("settings: overlap_limit must be > 0 and check_every >= 1");
+  if (settings_.sleep) {
+    if (pair_law_.ops->history > 0)
+      throw SetupError("settings: sleep needs a particle-particle law without history (the tangential springs of two "
+                       "sleeping spheres would be lost); turn sleep off or use a law without history");
+    if (!(settings_.sleep_speed > 0) || settings_.sleep_checks == 0 || settings_.sleep_check_every == 0)
+      throw SetupError("settings: sleep needs sleep_speed > 0, sleep_checks >= 1 and sleep_check_every >= 1");
+  }
   list_.start.assign(1, 0);
 }
 
@@ -125,6 +132,8 @@ template <class Real> void Simulation<Real>::add_particles(ParticleSet set, doub
     p_.inv_i[i] = Real(1.0 / (0.4 * set.mass[k] * set.radius[k] * set.radius[k]));
     p_.id[i] = set.id[k];
     p_.list_index[i] = no_index;
+    p_.mobile[i] = 1;
+    p_.calm[i] = 0;
     next_id_ = std::max(next_id_, set.id[k] + 1);
   }
   resize_walls();
@@ -255,7 +264,7 @@ template <class Real> void Simulation<Real>::resolve_step() {
     if (ge.geometry.ops->max_surface_speed) v_phys = std::max(v_phys, ge.geometry.ops->max_surface_speed(ge.geometry.self));
   speed_limit_ = settings_.speed_limit > 0 ? settings_.speed_limit : 10.0 * std::max(v_phys, 1e-3);
 
-  bool torque = pair_law_.ops->makes_torque(pair_law_.self) != 0;
+  bool torque = settings_.force_rotation || pair_law_.ops->makes_torque(pair_law_.self) != 0;
   for (const auto &pl : planes_) torque = torque || pl.wall.law.ops->makes_torque(pl.wall.law.self) != 0;
   for (const auto &ge : geometries_) torque = torque || ge.geometry.law.ops->makes_torque(ge.geometry.law.self) != 0;
   if (rotate_ != torque || !step_resolved_) {
@@ -337,7 +346,10 @@ template <class Real> void Simulation<Real>::rebuild_list() {
       if (s.history) gather(s.hist, perm_, scratch_real_, s.history);
     });
   }
-  list_.build(p_, grid, cell_start_, cell_sorted_, domain_, Real(skin_), pair_law_.ops->history, settings_.pairs_once);
+  list_.build(p_, grid, cell_start_, cell_sorted_, domain_, Real(skin_), pair_law_.ops->history, settings_.pairs_once,
+              settings_.sleep && asleep_ > 0 ? p_.mobile.data() : nullptr);
+  if (settings_.sleep) find_border();
+  asleep_at_build_ = asleep_;
   for (auto &ge : geometries_) find_near_geometry(ge);
 #pragma omp parallel for schedule(static)
   for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
@@ -378,6 +390,7 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
   WallSlot &s = plane.slot;
   const unsigned history = s.history;
   const std::size_t n = p_.size();
+  const bool moving = plane.wall.velocity[0] != 0 || plane.wall.velocity[1] != 0 || plane.wall.velocity[2] != 0;
   const int max_threads = max_team_size();
   if (thread_index_.size() < std::size_t(max_threads)) thread_index_.resize(max_threads);
   int teams = 1;
@@ -393,7 +406,8 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
       s.overlap[i] = overlap > 0 ? overlap : Real(0);
       bool held = false;
       for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
-      if (overlap > 0 || held) mine.push_back(static_cast<std::uint32_t>(i));
+      // a sleeping particle on a wall at rest stays as it is: no need to evaluate it
+      if ((overlap > 0 || held) && (moving || p_.mobile[i] != 0)) mine.push_back(static_cast<std::uint32_t>(i));
     }
   }
   plane.near.clear();
@@ -440,6 +454,9 @@ template <class Real> void Simulation<Real>::compute_forces() {
     WallContacts<Real> sw = subset_.walls();
     subset_forces(pl.wall.law, sv, sw);
     subset_.scatter(p_, pl.slot.overlap, pl.slot.hist);
+    if (asleep_ > 0)  // only a moving wall lists sleeping particles: it wakes those it touches
+      for (std::uint32_t i : pl.near)
+        if (p_.mobile[i] == 0 && pl.slot.overlap[i] > 0) wake(i);
   }
   for (auto &ge : geometries_) {
     // searched again when the geometry may have moved by a skin (the search does not change results)
@@ -501,6 +518,9 @@ template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot &ge, c
   if (!ge.near_valid) {
     WallContacts<Real> w = ge.slot.view(p_.size());
     evaluate(v, w);
+    if (asleep_ > 0)
+      for (std::uint32_t i = 0; i < p_.size(); ++i)
+        if (ge.slot.overlap[i] > 0) wake(i);
     return;
   }
   if (ge.near.empty()) return;
@@ -512,6 +532,9 @@ template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot &ge, c
     evaluate(sv, sw);
   }
   subset_.scatter(p_, ge.slot.overlap, ge.slot.hist);
+  if (asleep_ > 0)  // a moving surface wakes what it touches
+    for (std::uint32_t i : ge.near)
+      if (ge.slot.overlap[i] > 0) wake(i);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -522,7 +545,8 @@ template <class Real> KickDrift<Real> Simulation<Real>::integration(Real half_dt
   KickDrift<Real> k{p_.x.data(), p_.y.data(), p_.z.data(), p_.vx.data(), p_.vy.data(), p_.vz.data(),
                     p_.fx.data(), p_.fy.data(), p_.fz.data(), p_.wx.data(), p_.wy.data(), p_.wz.data(),
                     p_.tx.data(), p_.ty.data(), p_.tz.data(), p_.x0.data(), p_.y0.data(), p_.z0.data(),
-                    p_.inv_m.data(), p_.inv_i.data(), half_dt, dt, {}, {}, {}, {}, {}, rotate_};
+                    p_.inv_m.data(), p_.inv_i.data(), p_.mobile.data(), half_dt, dt, {}, {}, {}, {}, {}, rotate_,
+                    asleep_ > 0};
   for (int a = 0; a < 3; ++a) {
     k.g[a] = Real(settings_.gravity[a]);
     k.lo[a] = Real(domain_.lo[a]);
@@ -698,6 +722,8 @@ template <class Real> void Simulation<Real>::step() {
   if (step_ % settings_.check_every == 0) check_overlaps();
   ++counters_.steps;
   counters_.particle_steps += double(p_.size());
+  counters_.integrated_particle_steps += double(p_.size() - asleep_);
+  if (settings_.sleep) update_sleep();
   counters_.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
@@ -713,6 +739,89 @@ bool Simulation<Real>::run_until(double t_end, const StepCallback &callback, std
     if (callback && step_ % every == 0 && !callback(*this)) return false;
   }
   return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// sleeping (Settings::sleep)
+
+template <class Real> void Simulation<Real>::force_rotation(bool on) {
+  settings_.force_rotation = on;
+  step_resolved_ = false;
+}
+
+// The awake particles with a sleeping neighbour in the list: only their motion can wake one.
+template <class Real> void Simulation<Real>::find_border() {
+  border_.clear();
+  if (asleep_ == 0) return;
+  for (std::uint32_t i = 0; i < p_.size(); ++i) {
+    if (p_.mobile[i] == 0) continue;
+    for (std::uint32_t k = list_.start[i]; k < list_.start[i + 1]; ++k)
+      if (p_.mobile[list_.nbr[k]] == 0) {
+        border_.push_back(i);
+        break;
+      }
+  }
+}
+
+template <class Real> void Simulation<Real>::wake(std::uint32_t i) {
+  if (p_.mobile[i] != 0) return;
+  p_.mobile[i] = 1;
+  p_.calm[i] = 0;
+  --asleep_;
+  // its pairs with other sleeping particles are not listed: list them, and evaluate its forces anew
+  list_valid_ = false;
+  forces_valid_ = false;
+}
+
+// After the second half kick: wake the sleeping particles that a fast neighbour touches; every
+// sleep_check_every steps, put to sleep the particles at rest long enough in the sleep region.
+template <class Real> void Simulation<Real>::update_sleep() {
+  const Real s2 = Real(settings_.sleep_speed * settings_.sleep_speed);
+  const Real lx = Real(domain_.length(0)), ly = Real(domain_.length(1)), lz = Real(domain_.length(2));
+  const bool px = domain_.periodic[0], py = domain_.periodic[1], pz = domain_.periodic[2];
+  auto fast = [&](std::uint32_t i) {
+    const Real v2 = p_.vx[i] * p_.vx[i] + p_.vy[i] * p_.vy[i] + p_.vz[i] * p_.vz[i];
+    const Real w2 = (p_.wx[i] * p_.wx[i] + p_.wy[i] * p_.wy[i] + p_.wz[i] * p_.wz[i]) * p_.r[i] * p_.r[i];
+    return !(v2 < s2) || !(w2 < s2);
+  };
+  if (list_valid_) {
+    std::vector<std::uint32_t> woken;
+    for (std::uint32_t i : border_) {
+      if (!fast(i)) continue;
+      for (std::uint32_t k = list_.start[i]; k < list_.start[i + 1]; ++k) {
+        const std::uint32_t j = list_.nbr[k];
+        if (p_.mobile[j] != 0) continue;
+        const Real dx = wrap(p_.x[i] - p_.x[j], lx, px), dy = wrap(p_.y[i] - p_.y[j], ly, py),
+                   dz = wrap(p_.z[i] - p_.z[j], lz, pz), reach = p_.r[i] + p_.r[j];
+        if (dx * dx + dy * dy + dz * dz < reach * reach) woken.push_back(j);
+      }
+    }
+    for (std::uint32_t j : woken) wake(j);
+  }
+  if (step_ % settings_.sleep_check_every != 0) return;
+  const Real x_max = Real(sleep_x_max_);
+  const std::uint32_t needed = settings_.sleep_checks;
+  std::uint32_t fell = 0;
+  const long long n = static_cast<long long>(p_.size());
+#pragma omp parallel for schedule(static) reduction(+ : fell)
+  for (long long ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::uint32_t>(ii);
+    if (p_.mobile[i] == 0) continue;
+    const bool rest = p_.x[i] < x_max && !fast(i);
+    p_.calm[i] = rest ? p_.calm[i] + 1 : 0;
+    if (p_.calm[i] < needed) continue;
+    p_.mobile[i] = 0;
+    p_.vx[i] = 0; p_.vy[i] = 0; p_.vz[i] = 0;
+    p_.wx[i] = 0; p_.wy[i] = 0; p_.wz[i] = 0;
+    ++fell;
+  }
+  if (fell == 0) return;
+  asleep_ += fell;
+  // The pairs of two sleeping particles leave the list at its next build; until then they are
+  // evaluated as before (and change nothing). Who can wake them is known at once. A build is asked
+  // for once 5 % of the particles fell asleep since the last: a region at rest never rebuilds itself.
+  find_border();
+  if (asleep_ >= asleep_at_build_ + std::max<std::size_t>(1, p_.size() / 20)) list_valid_ = false;
 }
 
 template class Simulation<double>;

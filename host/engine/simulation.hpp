@@ -24,6 +24,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,13 @@ template <class Real = double> class Simulation {
   // Steps until time() reaches t_end (within half a step); calls `callback` after every step whose
   // number is a multiple of `every`. Returns false if the callback asked to stop.
   bool run_until(double t_end, const StepCallback &callback = {}, std::uint64_t every = 1);
+
+  // --- sleeping (Settings::sleep) --------------------------------------------------------------
+  // Particles with x below x_max may fall asleep from now on (-infinity, the start: none may).
+  void set_sleep_region(double x_max) { sleep_x_max_ = x_max; }
+  std::size_t sleeping_count() const { return asleep_; }
+  // Integrate rotation even when no law makes torque (benchmarks: the cost of what is skipped).
+  void force_rotation(bool on);
 
   // --- figures -------------------------------------------------------------------------------
   std::uint64_t removed_count() const { return counters_.removed; }
@@ -131,6 +139,9 @@ template <class Real = double> class Simulation {
   bool kick_and_drift(Real half_dt, Real dt);  // returns true when the list must be rebuilt
   void kick_and_check(Real half_dt);
   void check_overlaps();
+  void update_sleep();
+  void wake(std::uint32_t i);
+  void find_border();
   [[noreturn]] void report_bad_particle() const;  // throws RunError for the first NaN or too fast particle
   Particles<Real> view();
   void log(const std::string &message) const;
@@ -158,6 +169,11 @@ template <class Real = double> class Simulation {
   bool forces_zeroed_ = false;  // kick_and_drift cleared the accumulators after using them
   std::uint32_t next_id_ = 0;
   RunCounters counters_;
+  // Sleeping: where particles may fall asleep, how many are, and the awake particles listed with a
+  // sleeping neighbour (those whose motion can wake one).
+  double sleep_x_max_ = -std::numeric_limits<double>::infinity();
+  std::size_t asleep_ = 0, asleep_at_build_ = 0;
+  std::vector<std::uint32_t> border_;
 
   // Scratch (kept to avoid allocation in rebuilds).
   std::vector<std::uint32_t> perm_, cell_, cell_sorted_, cell_start_, scratch_index_;

@@ -1,4 +1,5 @@
 #include "workflow/case_once.hpp"
+#include "workflow/coarse_grain.hpp"
 
 #include <chrono>
 
@@ -14,7 +15,7 @@ nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool rende
   const std::string hash = case_hash(req.scene);
   ran = false;
   if (ctx.options.force || !case_finished(req.dir, hash)) {
-    write_atomic(req.dir / "scene.json", req.scene.dump(2) + "\n");
+    write_atomic(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry).dump(2) + "\n");  // as the engine runs it
     const std::string start = RunDirectory::now_iso();
     const auto t0 = std::chrono::steady_clock::now();
     run_case(req, ctx.registry);

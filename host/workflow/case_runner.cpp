@@ -11,6 +11,8 @@
 #include <mutex>
 
 #include "core/error.hpp"
+#include "engine/errors.hpp"
+#include "workflow/coarse_grain.hpp"
 #include "core/files.hpp"
 #include "core/stop.hpp"
 #include "engine/simulation.hpp"
@@ -63,8 +65,18 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   const std::string hash = case_hash(scene);
   const fs::path checkpoint_hash = req.dir / "checkpoint.hash";
   if (fs::exists(checkpoint) && fs::exists(checkpoint_hash) && read_text(checkpoint_hash) == hash) {
-    sim.load_checkpoint(checkpoint);
-    spdlog::info("{}: resuming from its checkpoint at t = {:.4g} s", req.id, sim.time());
+    try {
+      sim.load_checkpoint(checkpoint);
+      spdlog::info("{}: resuming from its checkpoint at t = {:.4g} s", req.id, sim.time());
+    } catch (const engine::SetupError &e) {
+      // e.g. written by another version: the case starts again from its settled heap (a half-read
+      // checkpoint leaves the simulation unusable, so it is built anew)
+      spdlog::warn("{}: its checkpoint cannot be resumed ({}); the case starts again", req.id, e.what());
+      std::error_code ec;
+      fs::remove(checkpoint, ec);
+      fs::remove(checkpoint_hash, ec);
+      return spread<Real>(req, reg);
+    }
   }
   const double duration = gops->duration(plugins.spreader.get()) + scene["time"]["relax"].get<double>();
   const double interval = scene["time"]["checkpoint_interval"];
@@ -95,7 +107,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
     ++next_snapshot;
   }
   // one snapshot time per interval; callbacks every 100 steps are cheap against the step cost
-  bool ok = sim.run_until(duration, [&](const engine::Simulation<Real> &s) {
+  bool ok = run_spreading(sim, *gops, plugins.spreader.get(), scene, duration, [&](const engine::Simulation<Real> &s) {
     const auto now = std::chrono::steady_clock::now();
     if (req.progress) req.progress(0.1 + 0.9 * s.time() / duration, "");
     if (next_snapshot <= snapshots && s.time() >= duration * next_snapshot / (snapshots + 1)) {
@@ -186,8 +198,10 @@ nlohmann::json run_case(const CaseRequest &request, PluginRegistry &registry) {
   fs::create_directories(request.dir);
   fs::create_directories(request.heaps);
   if (request.threads > 0) omp_set_num_threads(request.threads);
-  if (request.scene["precision"] == "float") return spread<float>(request, registry);
-  return spread<double>(request, registry);
+  CaseRequest effective = request;  // the scene the engine runs: coarse graining applied
+  effective.scene = coarse_grained(request.scene, registry);
+  if (effective.scene["precision"] == "float") return spread<float>(effective, registry);
+  return spread<double>(effective, registry);
 }
 
 }  // namespace spreadmap

@@ -43,6 +43,8 @@ engine::Settings make_settings(const nlohmann::json &scene, double dt) {
   s.dt_safety = t["safety"];
   s.skin = t["skin"];
   s.overlap_limit = t["overlap_limit"];
+  s.sleep = t.value("sleep", false);
+  s.sleep_speed = t.value("sleep_speed", 1e-3);
   s.gravity = {0, 0, -scene["gravity"].get<double>()};
   s.log = [](const std::string &m) { spdlog::debug("{}", m); };
   return s;
@@ -146,6 +148,27 @@ std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &sce
   return run;
 }
 
+template <class Real>
+bool run_spreading(engine::Simulation<Real> &sim, const sm_geometry_ops_v1 &ops, const void *spreader,
+                   const nlohmann::json &scene, double t_end, const typename engine::Simulation<Real>::StepCallback &callback,
+                   std::uint64_t every) {
+  const bool sleep = scene["time"].value("sleep", false);
+  const double behind = scene["time"].value("sleep_behind", 5e-3);
+  auto follow = [&] {
+    if (!sleep) return;
+    sm_pose_v1 pose{};
+    ops.pose(spreader, sim.time(), &pose);
+    // the trailing edge: a roller's rear, a blade's back face
+    const double rear = pose.centre[0] - std::max(pose.radius, 0.5 * pose.thickness);
+    sim.set_sleep_region(rear - behind);
+  };
+  follow();
+  return sim.run_until(t_end, [&](const engine::Simulation<Real> &s) {
+    follow();
+    return !callback || callback(s);
+  }, every);
+}
+
 template ParticleSet settle_heap<double>(const nlohmann::json &, PluginRegistry &, const std::string &, const fs::path &,
                                          const std::function<void(double)> &);
 template ParticleSet settle_heap<float>(const nlohmann::json &, PluginRegistry &, const std::string &, const fs::path &,
@@ -156,5 +179,11 @@ template std::unique_ptr<SpreadingRun<double>> make_spreading_run<double>(const 
                                                                           const ParticleSet &, const fs::path &);
 template std::unique_ptr<SpreadingRun<float>> make_spreading_run<float>(const nlohmann::json &, PluginRegistry &,
                                                                         const ParticleSet &, const fs::path &);
+template bool run_spreading<double>(engine::Simulation<double> &, const sm_geometry_ops_v1 &, const void *,
+                                    const nlohmann::json &, double, const engine::Simulation<double>::StepCallback &,
+                                    std::uint64_t);
+template bool run_spreading<float>(engine::Simulation<float> &, const sm_geometry_ops_v1 &, const void *,
+                                   const nlohmann::json &, double, const engine::Simulation<float>::StepCallback &,
+                                   std::uint64_t);
 
 }  // namespace spreadmap

@@ -48,4 +48,12 @@ template <class Real>
 std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &scene, PluginRegistry &reg,
                                                        const engine::ParticleSet &heap, const fs::path &scene_file);
 
+// Runs the spreading run to t_end as Simulation::run_until does; with scene.time.sleep, the region
+// where particles may fall asleep follows the spreader (time.sleep_behind behind its trailing edge),
+// moved at every callback (every `every` steps). The case runner and the benchmarks run through here.
+template <class Real>
+bool run_spreading(engine::Simulation<Real> &sim, const sm_geometry_ops_v1 &ops, const void *spreader,
+                   const nlohmann::json &scene, double t_end,
+                   const typename engine::Simulation<Real>::StepCallback &callback = {}, std::uint64_t every = 100);
+
 }  // namespace spreadmap

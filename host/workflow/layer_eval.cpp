@@ -103,7 +103,7 @@ Region default_region(const nlohmann::json &scene) {
 const std::vector<std::string> &standard_metric_order() {
   static const std::vector<std::string> order = {
       "vs", "rq", "mean_height", "solid_thickness", "packing_fraction", "packing_fraction_gap",
-      "coverage", "largest_bare_patch", "particles_in_region", "cell"};
+      "coverage", "largest_bare_patch", "particles_in_region", "loose_spheres", "cell"};
   return order;
 }
 

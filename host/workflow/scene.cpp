@@ -34,6 +34,8 @@ constexpr sm_param_v1 powder_params[] = {
     sm::number("heap_top", "m", 0, 10, 0, "insertion height limit; 0 = the domain height minus one diameter"),
     sm::number("settle_time", "s", 0, 100, 0.1, "settling time under gravity before the spreader moves"),
     sm::number("settle_speed", "m/s", 0, 10, 1e-3, "settling stops early once the fastest sphere is slower"),
+    sm::number("coarse_grain", "-", 1, 10, 1,
+               "coarse graining k: spheres k x larger, k^3 fewer, contact lengths (overlap_max) x k"),
 };
 
 constexpr sm_param_v1 time_params[] = {
@@ -44,6 +46,9 @@ constexpr sm_param_v1 time_params[] = {
     sm::number("checkpoint_interval", "s", 1, 1e6, 60, "wall-clock seconds between checkpoints"),
     sm::integer("snapshots", 0, 100000, 0, "states written during spreading (series.pvd); 0 = final only"),
     sm::number("overlap_limit", "-", 1e-4, 1, 0.1, "largest overlap allowed, as a fraction of the diameter"),
+    sm::boolean("sleep", false, "particles at rest far behind the spreader stop being integrated until touched"),
+    sm::number("sleep_speed", "m/s", 1e-9, 1, 1e-3, "sleep: slower than this (spin included) counts as at rest"),
+    sm::number("sleep_behind", "m", 0, 10, 5e-3, "sleep: only this far behind the spreader's trailing edge"),
 };
 
 constexpr sm_param_v1 engine_params[] = {

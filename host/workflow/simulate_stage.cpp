@@ -13,6 +13,7 @@
 #include "core/stop.hpp"
 #include "workflow/adaptive_run.hpp"
 #include "workflow/case_runner.hpp"
+#include "workflow/coarse_grain.hpp"
 #include "workflow/design.hpp"
 #include "workflow/executor_hook.hpp"
 #include "workflow/figure_style.hpp"
@@ -68,7 +69,7 @@ class SimulateStage : public Stage {
         std::error_code ec;
         fs::remove(req.dir / "checkpoint.bin", ec);
       }
-      write_atomic(req.dir / "scene.json", req.scene.dump(2) + "\n");
+      write_atomic(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry).dump(2) + "\n");  // as the engine runs it
       todo.push_back(std::move(req));
       todo_index.push_back(i);
     }

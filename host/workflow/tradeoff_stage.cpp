@@ -17,6 +17,7 @@
 
 #include <cmath>
 
+#include "analysis/summary.hpp"
 #include "analysis/table.hpp"
 #include "core/error.hpp"
 #include "core/files.hpp"
@@ -41,16 +42,8 @@ struct Fidelity {
   nlohmann::json description = nlohmann::json::object();  // key -> value as written
 };
 
-struct Stats {
-  double mean = 0, sd = 0;
-};
-Stats stats(const std::vector<double> &v) {
-  Stats s;
-  for (double x : v) s.mean += x / double(v.size());
-  for (double x : v) s.sd += (x - s.mean) * (x - s.mean);
-  s.sd = v.size() > 1 ? std::sqrt(s.sd / double(v.size() - 1)) : std::nan("");
-  return s;
-}
+using Stats = analysis::MeanSd;
+const auto stats = analysis::mean_sd;
 
 class TradeoffStage : public Stage {
  public:

@@ -1,7 +1,10 @@
 // The engine's fast paths give exactly the results of the plain ones: a law without history
 // evaluated once per pair (spreadmap/pair_once.hpp) against every list entry, for any number of
-// threads; a geometry evaluated for its near particles only against every particle.
+// threads; a geometry evaluated for its near particles only against every particle; sleeping particles
+// (Settings::sleep): no bit changes where none may sleep, asleep means exactly still, woken by impacts.
 #include "engine_test_law.hpp"
+
+#include <engine/errors.hpp>
 
 #include <cstring>
 #include <filesystem>
@@ -154,4 +157,123 @@ TEST(EngineGeometry, NearParticlesOnlyGiveTheSameBitsAsEveryParticle) {
   const auto near = run(&sm::detail::GeometryOps<TestBall>::table), every = run(&unbounded), none = run(nullptr);
   EXPECT_TRUE(same_state(*near, *every));
   EXPECT_FALSE(same_state(*near, *none)) << "the ball should have pushed particles";
+}
+
+namespace {
+
+// The falling packing of Scene, smaller, left to come to rest; then particles may sleep everywhere.
+struct RestingHeap {
+  Scene scene;
+  Settings settings = quiet();
+  std::unique_ptr<Simulation<double>> sim;
+  explicit RestingHeap(std::size_t n = 200) {
+    settings.sleep = true;
+    settings.sleep_checks = 3;
+    settings.sleep_speed = 2e-3;
+    settings.parallel_min_particles = 2000;  // one thread: small and quick, also under the sanitizers
+    sim = scene.make(settings, n);
+    sim->run_until(0.25);  // fallen and at rest (damping time 1 / (zeta omega) ~ 0.4 ms)
+  }
+};
+
+double top_of(const Simulation<double> &sim) {
+  double top = 0;
+  for (std::size_t i = 0; i < sim.size(); ++i) top = std::max(top, double(sim.arrays().z[i] + sim.arrays().r[i]));
+  return top;
+}
+
+}  // namespace
+
+TEST(EngineSleep, WhereNoneMaySleepNoBitChanges) {
+  // sleep on, but no region given: the same numbers as without sleeping, for any thread count
+  Scene scene;
+  auto run = [&](bool sleep, int threads) {
+    omp_set_num_threads(threads);
+    Settings s = quiet();
+    s.sleep = sleep;
+    auto sim = scene.make(s);
+    sim->run_steps(800);
+    omp_set_num_threads(2);
+    return sim;
+  };
+  const auto plain = run(false, 2), one = run(true, 1), two = run(true, 2);
+  EXPECT_TRUE(same_state(*plain, *one));
+  EXPECT_TRUE(same_state(*one, *two));
+  EXPECT_EQ(one->sleeping_count(), 0u);
+}
+
+TEST(EngineSleep, ARestingHeapSleepsStaysExactlyPutAndLeavesTheList) {
+  RestingHeap heap;
+  auto &sim = *heap.sim;
+  const std::size_t entries_awake = sim.list_entries();
+  sim.set_sleep_region(1.0);  // the whole box
+  sim.run_steps(2000);
+  EXPECT_GT(sim.sleeping_count(), sim.size() * 9 / 10) << "a heap at rest should fall asleep";
+  EXPECT_LT(sim.list_entries(), entries_awake / 2) << "pairs of two sleeping spheres stay listed";
+  // asleep: not integrated; positions keep every bit, velocities are exactly zero
+  const ParticleSet before = sim.state();
+  const double integrated = sim.counters().integrated_particle_steps, all = sim.counters().particle_steps;
+  sim.run_steps(1000);
+  const ParticleSet after = sim.state();
+  std::size_t frozen = 0;
+  for (std::size_t i = 0; i < after.size(); ++i) {
+    if (sim.arrays().mobile[i] != 0) continue;
+    std::size_t k = 0;
+    while (before.id[k] != after.id[i]) ++k;
+    frozen += before.x[k] == after.x[i] && before.y[k] == after.y[i] && before.z[k] == after.z[i] &&
+              after.vx[i] == 0 && after.vy[i] == 0 && after.vz[i] == 0 && after.wx[i] == 0;
+  }
+  EXPECT_EQ(frozen, sim.sleeping_count());
+  const double integrated_share = (sim.counters().integrated_particle_steps - integrated) / (sim.counters().particle_steps - all);
+  EXPECT_LT(integrated_share, 0.1);
+}
+
+TEST(EngineSleep, ASphereDroppedOnTheSleepingHeapWakesItAndDoesNotFallThrough) {
+  RestingHeap heap;
+  auto &sim = *heap.sim;
+  sim.set_sleep_region(1.0);
+  sim.run_steps(2000);
+  const std::size_t asleep = sim.sleeping_count();
+  ASSERT_GT(asleep, sim.size() / 2);
+  const double top = top_of(sim);
+  ParticleSet drop;
+  push_particle(drop, 0.006, 0.006, top + 0.002, 0.0006, 0, 0, -0.5);
+  sim.add_particles(drop, 2500);
+  sim.set_sleep_region(-1.0);  // nothing falls asleep again: what wakes stays awake
+  sim.run_steps(1500);
+  EXPECT_LT(sim.sleeping_count(), asleep) << "the impact woke nobody";
+  double z = 0;
+  for (std::size_t i = 0; i < sim.size(); ++i)
+    if (sim.arrays().id[i] == sim.size() - 1) z = sim.arrays().z[i];
+  EXPECT_GT(z, top - 0.0015) << "the dropped sphere sank through the sleeping heap";
+}
+
+TEST(EngineSleep, ResumeIsBitwiseIdentical) {
+  const auto path = std::filesystem::temp_directory_path() / ("engine_sleep_" + std::to_string(::getpid()) + ".bin");
+  RestingHeap heap(150);
+  auto &whole = *heap.sim;
+  whole.set_sleep_region(0.006);  // half the box
+  whole.run_steps(700);
+  whole.save_checkpoint(path);
+  whole.run_steps(700);
+  Simulation<double> resumed(heap.scene.domain, bind_slider(heap.scene.pair), heap.settings);
+  resumed.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_slider(heap.scene.wall), true, "floor"});
+  resumed.load_checkpoint(path);
+  resumed.run_steps(700);
+  std::filesystem::remove(path);
+  EXPECT_GT(whole.sleeping_count(), 0u);
+  EXPECT_EQ(whole.sleeping_count(), resumed.sleeping_count());
+  EXPECT_TRUE(same_state(whole, resumed));
+}
+
+TEST(EngineSleep, ALawWithHistoryIsRefused) {
+  TestSpringDashpot law = TestSpringDashpot::with_restitution(100, 0.5, 0.3);  // tangential springs: history
+  Settings s = quiet();
+  s.sleep = true;
+  try {
+    Simulation<double> sim(Domain{{0, 0, 0}, {0.01, 0.01, 0.01}, {false, false, false}}, bind(law), s);
+    FAIL() << "sleep with a history law was accepted";
+  } catch (const SetupError &e) {
+    EXPECT_NE(std::string(e.what()).find("without history"), std::string::npos) << e.what();
+  }
 }

@@ -35,15 +35,18 @@ TEST_F(LayerPlugin, DescribesItself) {
   EXPECT_EQ(plugin_->abi, SPREADMAP_PLUGIN_ABI);
   EXPECT_STREQ(plugin_->kind, "metrics");
   EXPECT_STREQ(plugin_->name, "layer");
-  ASSERT_EQ(plugin_->n_params, 1u);
+  ASSERT_EQ(plugin_->n_params, 2u);
   EXPECT_STREQ(plugin_->params[0].name, "grid");
   EXPECT_STREQ(plugin_->params[0].unit, "m");
   EXPECT_EQ(plugin_->params[0].def, 0.0);
+  EXPECT_STREQ(plugin_->params[1].name, "exclude_loose");
+  EXPECT_EQ(plugin_->params[1].type, SM_BOOLEAN);
+  EXPECT_EQ(plugin_->params[1].def, 1.0);  // spheres in flight are not the layer, by default
 }
 
 TEST_F(LayerPlugin, EvaluatesASphereAndExposesItsHeightMap) {
   sm_error err{};
-  void *self = plugin_->create(R"({"grid": 1e-5})", &err);
+  void *self = plugin_->create(R"({"grid": 1e-5, "exclude_loose": true})", &err);
   ASSERT_NE(self, nullptr) << err.text;
   const double r = 125e-6, x = 0.5e-3, y = 0.5e-3, z = 20e-6 + r;
   sm_layer_input_v1 in{};
@@ -83,7 +86,7 @@ TEST_F(LayerPlugin, EvaluatesASphereAndExposesItsHeightMap) {
 
 TEST_F(LayerPlugin, ReportsBadInputAsErrorText) {
   sm_error err{};
-  void *self = plugin_->create(R"({"grid": 0})", &err);
+  void *self = plugin_->create(R"({"grid": 0, "exclude_loose": true})", &err);
   ASSERT_NE(self, nullptr) << err.text;
   uint32_t nx = 7, ny = 7;
   EXPECT_EQ(ops_->heightmap(self, &nx, &ny, nullptr, nullptr, nullptr), nullptr);  // nothing evaluated yet

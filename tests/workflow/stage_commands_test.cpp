@@ -195,3 +195,29 @@ TEST_F(StageCommands, SimulateDrawsFramesOfTheSeriesAtTheStageWidth) {
   }
   EXPECT_FALSE(fs::exists(c / "frames" / "frame_0004.png"));
 }
+
+TEST_F(StageCommands, CoarseGrainingScalesSpheresCountAndContactLengths) {
+  // k = 2: spheres twice as large and 8 times fewer, overlap_max doubled, so the contact frequency
+  // V_max / Delta_max halves and the automatic step doubles exactly.
+  auto workflow = [&](const std::string &name, double k) {
+    const fs::path wf = dir_ / (name + ".yaml");
+    std::ofstream(wf) << "version: 1\nname: " << name << "\nscene:\n  preset: quick\n  domain: {length: 20 mm}\n"
+                      << "  powder: {count: 400, heap_from: 6 mm, heap_to: 10 mm, settle_time: 0.01 s, coarse_grain: " << k
+                      << "}\n  spreader: {use: roller, travel: 2 mm}\nstages:\n  - simulate:\n      render: false\n"
+                         "      design: {type: list, cases: [{U: 100 mm/s}]}\n";
+    const auto r = spreadmap({"run", wf.string(), "--out", (dir_ / name).string()});
+    EXPECT_EQ(r.exit_code, 0) << r.describe();
+    return dir_ / name / "cases" / "c000";
+  };
+  const fs::path fine = workflow("fine", 1), coarse = workflow("coarse", 2);
+  const auto scene = nlohmann::json::parse(std::ifstream(coarse / "scene.json"));
+  EXPECT_DOUBLE_EQ(scene["powder"]["diameter"].get<double>(), 500e-6);
+  EXPECT_EQ(scene["powder"]["count"].get<int>(), 50);
+  EXPECT_DOUBLE_EQ(scene["contact"]["params"]["overlap_max"].get<double>(), 10e-6);  // the quick preset's 5 um x 2
+  EXPECT_DOUBLE_EQ(scene["substrate"]["law"]["overlap_max"].get<double>(), 10e-6);
+  EXPECT_DOUBLE_EQ(scene["contact"]["params"]["v_max"].get<double>(), 0.5);
+  const auto c_fine = nlohmann::json::parse(std::ifstream(fine / "case.json"));
+  const auto c_coarse = nlohmann::json::parse(std::ifstream(coarse / "case.json"));
+  EXPECT_NEAR(c_coarse["dt"].get<double>(), 2 * c_fine["dt"].get<double>(), 1e-12 * c_fine["dt"].get<double>());
+  EXPECT_EQ(c_coarse["particles_start"].get<int>(), 50);
+}

@@ -4,7 +4,8 @@
 // cells over the host's sampling region and reports mean height, R_q (std. deviation of h), V_s (mean
 // height x U, the study's spread rate per unit roller width), solid thickness with spheres clipped
 // exactly by the region, packing fractions, coverage and the largest bare patch, all in SI with their
-// units. The algorithm lives in layer_metrics / heightmap (plain C++, tested directly); this file is
+// units. Spheres resting on nothing (in flight) are left out by default (resting.hpp). The algorithm
+// lives in layer_metrics / heightmap (plain C++, tested directly); this file is
 // only the C boundary. The plugin writes no file: the host asks for the last map through heightmap().
 #include <spreadmap/metric.hpp>
 #include <spreadmap/plugin.hpp>
@@ -24,16 +25,19 @@ class Layer {
   static constexpr sm_param_v1 params[] = {
       sm::number("grid", "m", 0.0, 1.0, 0.0,
                  "height-map cell size (square cells, sampled at their centres); 0 = mean sphere diameter / 5"),
+      sm::boolean("exclude_loose", true,
+                  "leave out spheres resting on nothing (in flight when the state was taken); false: every sphere"),
   };
   static Layer bind(const sm::Values &v) {
     Layer layer;
     layer.cell_ = v["grid"];
+    layer.exclude_loose_ = v.boolean("exclude_loose");
     if (layer.cell_ < 0) throw sm::ParamError("grid = " + std::to_string(layer.cell_) + " m must be >= 0 (0 = d/5)");
     return layer;
   }
 
   const char *evaluate(const sm_layer_input_v1 &in) {
-    last_ = sm::layer::characterise_layer(in, cell_);
+    last_ = sm::layer::characterise_layer(in, cell_, exclude_loose_);
     json_ = sm::layer::metrics_json(last_);
     return json_.c_str();
   }
@@ -41,6 +45,7 @@ class Layer {
 
  private:
   double cell_ = 0;
+  bool exclude_loose_ = true;
   sm::layer::LayerResult last_;
   std::string json_;  // owned here: valid until the next evaluate() or destroy()
 };

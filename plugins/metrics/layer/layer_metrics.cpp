@@ -8,6 +8,7 @@
 #include <string>
 
 #include "clipped_sphere.hpp"
+#include "resting.hpp"
 
 namespace sm = spreadmap;
 using sm::layer::LayerResult;
@@ -113,11 +114,24 @@ std::size_t sm::layer::largest_bare_patch_points(const std::vector<std::uint8_t>
   return largest;
 }
 
-LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double cell) {
+LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose) {
   check_input(in);
   LayerResult out;
-  const SphereArrays spheres{static_cast<std::size_t>(in.n), in.x, in.y, in.z, in.r};
+  SphereArrays spheres{static_cast<std::size_t>(in.n), in.x, in.y, in.z, in.r};
   const PeriodicStrip strip{in.periodic_y[0], in.periodic_y[1]};
+  std::vector<double> kept[4];  // the resting spheres' columns, when the loose ones are left out
+  if (exclude_loose) {
+    const auto resting = resting_spheres(spheres, in.substrate_z, strip);
+    for (std::size_t i = 0; i < spheres.n; ++i) {
+      if (!resting[i]) continue;
+      kept[0].push_back(in.x[i]), kept[1].push_back(in.y[i]), kept[2].push_back(in.z[i]), kept[3].push_back(in.r[i]);
+    }
+    out.metrics.loose_spheres = spheres.n - kept[0].size();
+    spheres = {kept[0].size(), kept[0].data(), kept[1].data(), kept[2].data(), kept[3].data()};
+    if (out.metrics.loose_spheres > 0)
+      out.warnings.push_back(std::to_string(out.metrics.loose_spheres) +
+                             " sphere(s) rest on nothing (in flight when the state was taken): left out of the layer");
+  }
   const double width = in.region[1] - in.region[0], depth = in.region[3] - in.region[2];
 
   if (!(cell > 0)) {
@@ -175,6 +189,7 @@ std::string sm::layer::metrics_json(const LayerResult &r) {
   put("largest_bare_patch", number_or_null(m.largest_bare_patch), "m^2");
   put("particles_in_region", m.particles_in_region, "-");
   put("cell", number_or_null(m.cell), "m");
+  put("loose_spheres", m.loose_spheres, "-");
   nlohmann::ordered_json doc;
   doc["metrics"] = std::move(metrics);
   doc["units"] = std::move(units);

@@ -6,7 +6,8 @@
 // the substrate and the height map [-]; packing_fraction_gap, solid volume over region area x gap [-];
 // coverage, share of covered grid points [-]; largest_bare_patch, area of the largest 4-connected set
 // of uncovered grid points [m^2] (not wrapped across a periodic strip); particles_in_region, centres in
-// [x0, x1) x [y0, y1) [-]; cell, the grid's cell [m]. An undefined value is NaN here and null in JSON,
+// [x0, x1) x [y0, y1) [-]; cell, the grid's cell [m]; loose_spheres, spheres left out because they
+// rest on nothing (exclude_loose) [-]. An undefined value is NaN here and null in JSON,
 // never a silent number: vs without a speed, packing_fraction when the map's volume is 0,
 // packing_fraction_gap without a gap.
 #pragma once
@@ -25,6 +26,7 @@ struct LayerMetrics {
   double mean_height = 0, rq = 0, vs = 0, solid_thickness = 0, packing_fraction = 0, packing_fraction_gap = 0;
   double coverage = 0, largest_bare_patch = 0, cell = 0;
   std::uint64_t particles_in_region = 0;
+  std::uint64_t loose_spheres = 0;  // left out with exclude_loose (anywhere, not only in the region)
 };
 
 struct LayerResult {
@@ -36,8 +38,10 @@ struct LayerResult {
 };
 
 // The whole characterisation. `cell` is the plugin's `grid` parameter: 0 means mean diameter / 5.
-// Throws std::invalid_argument for unusable input (empty region, non-finite sphere data).
-LayerResult characterise_layer(const sm_layer_input_v1 &in, double cell);
+// exclude_loose: only the spheres resting on the substrate (directly or through touching spheres,
+// resting.hpp) make the layer; loose_spheres counts the others. Throws std::invalid_argument for
+// unusable input (empty region, non-finite sphere data).
+LayerResult characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose = false);
 
 // {"metrics": {...}, "units": {...}, "warnings": [...]}; NaN metrics are written as null.
 std::string metrics_json(const LayerResult &result);
