@@ -13,6 +13,10 @@
 //
 // Usage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] [--steps N]
 //          [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT]
+//          [--backend cpu|cuda]
+//   --backend cuda: the GPU mode, every step on the device (cuda/resident_stepper.hpp); the thread
+//   counts then only set the host's OpenMP threads. With --workflow workflows/paper.yaml it times the
+//   study's 235,000-sphere scene (its heap is settled first, on the same backend).
 //   --heap: a settled heap (state .vtp, e.g. runs/peer_liggghts/heaps/heap_*.vtp); without it one is
 //   settled first (~0.1 s of simulated time, a few minutes) and written to --save-heap if given.
 //   --skip: spreading steps run once (not timed) before the timed ones; each repeat resumes there
@@ -55,6 +59,7 @@ struct Options {
   int repeats = 3;
   std::vector<int> threads{1, 2};
   double omega = 0;
+  std::string backend = "cpu";
   double liggghts = liggghts_results_md;
   std::string liggghts_label = "from shared/peers/RESULTS.md (serial, 2-core machine), NOT measured in this run";
 };
@@ -62,7 +67,8 @@ struct Options {
 [[noreturn]] void usage(const char *why) {
   std::fprintf(stderr,
                "bench_peer_scene: %s\nusage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] "
-               "[--steps N] [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT]\n",
+               "[--steps N] [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT] "
+               "[--backend cpu|cuda]\n",
                why);
   std::exit(2);
 }
@@ -82,6 +88,7 @@ Options parse(int argc, char **argv) {
     else if (a == "--skip") o.skip = std::stoull(value());
     else if (a == "--repeats") o.repeats = std::max(1, std::stoi(value()));
     else if (a == "--omega") o.omega = std::stod(value());
+    else if (a == "--backend") o.backend = value();
     else if (a == "--liggghts") o.liggghts = std::stod(value());
     else if (a == "--liggghts-label") o.liggghts_label = value();
     else if (a == "--threads") {
@@ -126,17 +133,6 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// The end state as bytes in id order, to compare runs bitwise.
-std::vector<double> state_by_id(const sm::engine::ParticleSet &s) {
-  std::vector<std::size_t> order(s.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s.id[a] < s.id[b]; });
-  std::vector<double> out;
-  for (std::size_t i : order)
-    for (const auto *c : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz, &s.wx, &s.wy, &s.wz}) out.push_back((*c)[i]);
-  return out;
-}
-
 struct Timing {
   double particle_steps_per_second;
   double neighbours;        // full-list entries per particle at the end
@@ -157,6 +153,7 @@ int main(int argc, char **argv) {
   nlohmann::json scene = sm::resolve_scene(sm::load_workflow(opt.workflow), registry, diag);
   diag.throw_if_any();
   scene["spreader"]["params"]["omega"] = opt.omega;
+  scene["backend"] = opt.backend;
   scene["powder"]["seed"] = 1;
   if (scene["precision"] != "double") usage("the workflow's scene is not in double precision");
 
@@ -191,8 +188,8 @@ int main(int argc, char **argv) {
   }
 
   const double dt = scene["time"]["step"];
-  std::printf("bench_peer_scene: the peers' spreading scene (%s), double precision, dt = %.3g s, omega = %g rad/s\n",
-              opt.workflow.filename().c_str(), dt, opt.omega);
+  std::printf("bench_peer_scene: the spreading scene of %s, double precision, dt = %.3g s, omega = %g rad/s, backend %s\n",
+              opt.workflow.filename().c_str(), dt, opt.omega, opt.backend.c_str());
   std::printf("machine: %s, %u hardware threads (OpenMP sees %d processors); load average at start %s\n",
               first_line_of("/proc/cpuinfo", "model name").c_str(), std::thread::hardware_concurrency(),
               omp_get_num_procs(), load_average().c_str());
@@ -221,7 +218,7 @@ int main(int argc, char **argv) {
       const double particle_steps = after.particle_steps - before.particle_steps;
       Timing t{particle_steps / wall,
                double(sim.list_entries()) / double(std::max<std::size_t>(1, sim.size())),
-               after.list_builds - before.list_builds, sim.removed_count(), sim.size(), state_by_id(sim.state())};
+               after.list_builds - before.list_builds, sim.removed_count(), sim.size(), sim.state().kinematics_by_id()};
       std::printf("  repeat %d, %d thread%s: %.3e particle-steps/s (%.1f ns per particle-step; CPU time of all "
                   "threads %.1f ns), %llu list builds, %.2f neighbours per particle (full list), %zu particles at the "
                   "end\n",

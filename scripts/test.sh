@@ -1,7 +1,8 @@
 #!/bin/sh
 # The whole test suite from a fresh clone: installs what is missing, builds the release tree and
 # runs every test, then builds the AddressSanitizer+UBSan tree and runs the unit, extremes and
-# workflow tests under it. Tests labelled gpu (need a GPU) and manual (run by hand) are left out.
+# workflow tests under it. Tests labelled manual (run by hand) are left out, and so are those labelled
+# gpu where no GPU is present (it says which).
 set -eu
 cd "$(dirname "$0")/.."
 jobs="${SPREADMAP_BUILD_JOBS:-2}"
@@ -11,8 +12,14 @@ scripts/setup.sh --tests
 echo "== release build"
 cmake --preset release
 cmake --build build -j"$jobs"
-echo "== release tests (leaving out the labels gpu and manual: they need a GPU or a person)"
-ctest --test-dir build -j"$jobs" --output-on-failure -LE "gpu|manual"
+if command -v nvidia-smi >/dev/null 2>&1 && nvidia-smi -L 2>/dev/null | grep -q "^GPU"; then
+  leave_out="manual"
+  echo "== release tests (a GPU is present: the gpu tests run too; leaving out the label manual: it needs a person)"
+else
+  leave_out="gpu|manual"
+  echo "== release tests (leaving out the labels gpu and manual: no GPU here, and manual needs a person)"
+fi
+ctest --test-dir build -j"$jobs" --output-on-failure -LE "$leave_out"
 
 echo "== AddressSanitizer + UBSan build"
 cmake --preset asan

@@ -56,9 +56,8 @@ bool built_with_cuda() {
 #endif
 }
 
-// The plugins' GPU kernels and their host driver exist; the engine's neighbour search and integrator
-// do not run on the GPU yet. Return built_with_cuda() once they do.
-bool engine_runs_on_cuda() { return false; }
+// A CUDA build steps whole cases on the GPU (cuda/resident_stepper.hpp).
+bool engine_runs_on_cuda() { return built_with_cuda(); }
 
 const DeviceProbe &probe_devices() {
   static const DeviceProbe probe = ask_runtime();

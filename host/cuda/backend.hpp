@@ -17,8 +17,7 @@ struct DeviceProbe {
 
 // True when this build carries the CUDA backend (SPREADMAP_ENABLE_CUDA resolved to ON).
 bool built_with_cuda();
-// True when the engine can run a whole case on the GPU. Until it can, `auto` stays on the CPU even
-// with a device, and `cuda` is refused with a sentence saying so.
+// True when the engine can run a whole case on the GPU: in every CUDA build (the resident stepper).
 bool engine_runs_on_cuda();
 const DeviceProbe &probe_devices();
 // Number of usable CUDA devices: 0 without CUDA in the build, without a driver or without a device.

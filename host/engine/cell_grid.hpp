@@ -4,6 +4,7 @@
 // no memory.
 #pragma once
 #include <engine/domain.hpp>
+#include <spreadmap/hd.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -21,24 +22,77 @@ template <class Real> struct CellGrid {
   // the slowest, so that neighbouring cells (and the particles sorted by cell) lie close in memory.
   int order[3]{0, 1, 2};
 
-  std::size_t count() const { return std::size_t(n[0]) * n[1] * n[2]; }
-  int coord(int axis, Real v) const {
+  // Host-device: the GPU backend bins with the very same functions.
+  SM_HD std::size_t count() const { return std::size_t(n[0]) * n[1] * n[2]; }
+  SM_HD int coord(int axis, Real v) const {
     const int c = static_cast<int>(std::floor((v - origin[axis]) * inv_size[axis]));
-    return std::clamp(c, 0, n[axis] - 1);
+    return c < 0 ? 0 : (c > n[axis] - 1 ? n[axis] - 1 : c);
   }
-  std::size_t index(const int c[3]) const {
+  SM_HD std::size_t index(const int c[3]) const {
     return (std::size_t(c[order[2]]) * n[order[1]] + c[order[1]]) * n[order[0]] + c[order[0]];
   }
-  void coords(std::size_t cell, int c[3]) const {
+  SM_HD void coords(std::size_t cell, int c[3]) const {
     c[order[0]] = int(cell % n[order[0]]);
     c[order[1]] = int((cell / n[order[0]]) % n[order[1]]);
     c[order[2]] = int(cell / (std::size_t(n[order[0]]) * n[order[1]]));
   }
-  std::uint32_t cell_of(Real x, Real y, Real z) const {
+  SM_HD std::uint32_t cell_of(Real x, Real y, Real z) const {
     const int c[3] = {coord(0, x), coord(1, y), coord(2, z)};
     return static_cast<std::uint32_t>(index(c));
   }
 };
+
+// The particle ranges [begin, end) of the cells around a cell (itself included), each cell once
+// (an axis of fewer than three periodic cells wraps onto the same ones), empty ones left out, in
+// increasing begin: particles sorted by cell then meet their neighbours in increasing index.
+struct CellRanges {
+  std::uint32_t begin[27], end[27];
+  int n = 0;
+};
+
+namespace detail {
+// Distinct cell coordinates among c-1, c, c+1 along one axis (wrapped when periodic).
+SM_HD int axis_neighbours(int c, int n, bool periodic, int out[3]) {
+  int k = 0;
+  for (int d = -1; d <= 1; ++d) {
+    int q = c + d;
+    if (periodic) q = (q + n) % n;
+    else if (q < 0 || q >= n) continue;
+    bool seen = false;
+    for (int t = 0; t < k; ++t) seen = seen || out[t] == q;
+    if (!seen) out[k++] = q;
+  }
+  return k;
+}
+}  // namespace detail
+
+template <class Real>
+SM_HD CellRanges neighbour_ranges(const CellGrid<Real> &grid, std::uint32_t cell, const std::uint32_t *cell_start) {
+  CellRanges r;
+  int cc[3];
+  grid.coords(cell, cc);
+  int ax[3], ay[3], az[3];
+  const int kx = detail::axis_neighbours(cc[0], grid.n[0], grid.periodic[0], ax);
+  const int ky = detail::axis_neighbours(cc[1], grid.n[1], grid.periodic[1], ay);
+  const int kz = detail::axis_neighbours(cc[2], grid.n[2], grid.periodic[2], az);
+  for (int a = 0; a < kz; ++a)
+    for (int b = 0; b < ky; ++b)
+      for (int c = 0; c < kx; ++c) {
+        const int nc[3] = {ax[c], ay[b], az[a]};
+        const std::size_t q = grid.index(nc);
+        if (cell_start[q] == cell_start[q + 1]) continue;
+        // insertion by begin (ranges of distinct cells never share a begin)
+        int at = r.n++;
+        while (at > 0 && r.begin[at - 1] > cell_start[q]) {
+          r.begin[at] = r.begin[at - 1];
+          r.end[at] = r.end[at - 1];
+          --at;
+        }
+        r.begin[at] = cell_start[q];
+        r.end[at] = cell_start[q + 1];
+      }
+  return r;
+}
 
 // bbox_lo/hi: the particles' bounding box; reach: the largest r_i + r_j + skin; n_particles bounds
 // the cell count (at most ~8 cells per particle: sparse scenes get coarser cells, never more memory).

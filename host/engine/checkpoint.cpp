@@ -17,6 +17,7 @@ constexpr std::uint32_t format_version = 2;  // 2: sleeping (mobile, calm, the s
 }  // namespace
 
 template <class Real> void Simulation<Real>::save_checkpoint(const std::filesystem::path &path) const {
+  sync_host();
   BinaryWriter w;
   for (char c : magic) w.value(c);
   w.value(format_version);
@@ -64,6 +65,7 @@ template <class Real> void Simulation<Real>::save_checkpoint(const std::filesyst
 }
 
 template <class Real> void Simulation<Real>::load_checkpoint(const std::filesystem::path &path) {
+  host_changes();
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SetupError(fmt::format("{}: cannot open the checkpoint for reading", path.string()));
   std::ostringstream all;

@@ -1,5 +1,7 @@
 // The two half kicks of a velocity-Verlet step over a range of particles, compiled once per
-// combination of periodic axes and rotation so that the loops have no branch left and vectorise.
+// combination of periodic axes, rotation and sleeping so that the loops have no branch left and
+// vectorise. The per-particle pieces (half_kick, drift, too_fast) are host-device functions: the GPU
+// backend's integration kernels run exactly them.
 // First: w += dt/2 T/I (when rotating); v += dt/2 (F/m + g); F = T = 0 (the accumulators are used
 // up); x += dt v, wrapped along periodic axes; the largest squared displacement since the list
 // build. Second (after the forces): the same kick, and a count of particles too fast or not finite.
@@ -28,7 +30,7 @@ template <class Real> struct KickDriftResult {
 
 namespace detail {
 template <class Real, bool Periodic>
-inline Real drift_axis(Real pos, Real v, Real dt, Real lo, Real hi, Real len, std::uint32_t &out) {
+SM_HD Real drift_axis(Real pos, Real v, Real dt, Real lo, Real hi, Real len, std::uint32_t &out) {
   const Real q = pos + dt * v;
   if constexpr (Periodic) {
     return q >= hi ? q - len : (q < lo ? q + len : q);
@@ -37,7 +39,7 @@ inline Real drift_axis(Real pos, Real v, Real dt, Real lo, Real hi, Real len, st
     return q;
   }
 }
-template <class Real, bool Periodic> inline Real moved_axis(Real pos, Real ref, Real len) {
+template <class Real, bool Periodic> SM_HD Real moved_axis(Real pos, Real ref, Real len) {
   const Real d = pos - ref;
   if constexpr (Periodic) {
     const Real h = Real(0.5) * len;
@@ -66,35 +68,48 @@ template <class Real, bool Rotate, bool Sleep> SM_HD void half_kick(const KickDr
   k.vz[i] = kick(k.vz[i], k.fz[i] * k.inv_m[i] + k.g[2]);
 }
 
+// What the drift of one particle reports.
+template <class Real> struct Drifted {
+  Real d2;                // squared displacement since the list build
+  std::uint32_t escaped;  // 1: outside an open axis (with a finite position)
+  std::uint32_t nonfinite;
+};
+
+// Drift of particle i after its first half kick: the accumulators cleared (used up), x += dt v,
+// wrapped along periodic axes.
+template <class Real, bool PX, bool PY, bool PZ> SM_HD Drifted<Real> drift(const KickDrift<Real> &k, long long i) {
+  k.fx[i] = 0; k.fy[i] = 0; k.fz[i] = 0;
+  k.tx[i] = 0; k.ty[i] = 0; k.tz[i] = 0;
+  std::uint32_t out = 0;
+  const Real px = drift_axis<Real, PX>(k.x[i], k.vx[i], k.dt, k.lo[0], k.hi[0], k.len[0], out);
+  const Real py = drift_axis<Real, PY>(k.y[i], k.vy[i], k.dt, k.lo[1], k.hi[1], k.len[1], out);
+  const Real pz = drift_axis<Real, PZ>(k.z[i], k.vz[i], k.dt, k.lo[2], k.hi[2], k.len[2], out);
+  k.x[i] = px; k.y[i] = py; k.z[i] = pz;
+  const Real dx = moved_axis<Real, PX>(px, k.x0[i], k.len[0]), dy = moved_axis<Real, PY>(py, k.y0[i], k.len[1]),
+             dz = moved_axis<Real, PZ>(pz, k.z0[i], k.len[2]);
+  const std::uint32_t finite = ((px - px) == 0) & ((py - py) == 0) & ((pz - pz) == 0);  // inf - inf is NaN
+  return {dx * dx + dy * dy + dz * dz, out & finite, 1u - finite};
+}
+
+// Is particle i (after its second half kick) faster than sqrt(limit2), or is its velocity or spin
+// not finite?
+template <class Real> SM_HD std::uint32_t too_fast(const KickDrift<Real> &k, Real limit2, long long i) {
+  const Real v2 = k.vx[i] * k.vx[i] + k.vy[i] * k.vy[i] + k.vz[i] * k.vz[i];
+  const Real w2 = k.wx[i] * k.wx[i] + k.wy[i] * k.wy[i] + k.wz[i] * k.wz[i];
+  return (!(v2 <= limit2) | !((w2 - w2) == 0)) ? 1u : 0u;  // NaN fails the comparison; inf - inf is NaN
+}
+
 template <class Real, bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>
 void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
   std::uint32_t escaped = 0, nonfinite = 0;
   Real largest = 0;
-  // Locals: stores through the arrays cannot then be taken to change them.
-  Real *x = k.x, *y = k.y, *z = k.z, *vx = k.vx, *vy = k.vy, *vz = k.vz, *fx = k.fx, *fy = k.fy, *fz = k.fz;
-  Real *tx = k.tx, *ty = k.ty, *tz = k.tz;
-  const Real *x0 = k.x0, *y0 = k.y0, *z0 = k.z0;
-  const Real dt = k.dt;
-  const Real lx = k.lo[0], ly = k.lo[1], lz = k.lo[2], hx = k.hi[0], hy = k.hi[1], hz = k.hi[2];
-  const Real Lx = k.len[0], Ly = k.len[1], Lz = k.len[2];
 #pragma omp simd reduction(+ : escaped, nonfinite) reduction(max : largest)
   for (long long i = begin; i < end; ++i) {
     half_kick<Real, Rotate, Sleep>(k, i);
-    const Real ux = vx[i], uy = vy[i], uz = vz[i];
-    fx[i] = 0; fy[i] = 0; fz[i] = 0;
-    tx[i] = 0; ty[i] = 0; tz[i] = 0;
-    std::uint32_t out = 0;
-    const Real px = drift_axis<Real, PX>(x[i], ux, dt, lx, hx, Lx, out);
-    const Real py = drift_axis<Real, PY>(y[i], uy, dt, ly, hy, Ly, out);
-    const Real pz = drift_axis<Real, PZ>(z[i], uz, dt, lz, hz, Lz, out);
-    x[i] = px; y[i] = py; z[i] = pz;
-    const Real dx = moved_axis<Real, PX>(px, x0[i], Lx), dy = moved_axis<Real, PY>(py, y0[i], Ly),
-               dz = moved_axis<Real, PZ>(pz, z0[i], Lz);
-    const Real d2 = dx * dx + dy * dy + dz * dz;
-    const std::uint32_t finite = ((px - px) == 0) & ((py - py) == 0) & ((pz - pz) == 0);  // inf - inf is NaN
-    nonfinite += 1u - finite;
-    escaped += out & finite;
-    largest = largest > d2 ? largest : d2;
+    const Drifted<Real> d = drift<Real, PX, PY, PZ>(k, i);
+    nonfinite += d.nonfinite;
+    escaped += d.escaped;
+    largest = largest > d.d2 ? largest : d.d2;
   }
   result.escaped += escaped;
   result.nonfinite += nonfinite;
@@ -103,15 +118,11 @@ void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, 
 
 template <class Real, bool Rotate, bool Sleep>
 std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
-  const Real *vx = k.vx, *vy = k.vy, *vz = k.vz, *wx = k.wx, *wy = k.wy, *wz = k.wz;
   std::uint32_t bad = 0;
 #pragma omp simd reduction(+ : bad)
   for (long long i = begin; i < end; ++i) {
     half_kick<Real, Rotate, Sleep>(k, i);
-    const Real ux = vx[i], uy = vy[i], uz = vz[i];
-    const Real v2 = ux * ux + uy * uy + uz * uz;
-    const Real w2 = wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i];
-    bad += (!(v2 <= limit2) | !((w2 - w2) == 0)) ? 1u : 0u;  // NaN fails the comparison; inf - inf is NaN
+    bad += too_fast(k, limit2, i);
   }
   return bad;
 }

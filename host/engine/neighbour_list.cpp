@@ -1,4 +1,5 @@
 #include <engine/neighbour_list.hpp>
+#include <engine/neighbour_listing.hpp>
 #include <spreadmap/contact.hpp>
 #include <spreadmap/team.hpp>
 
@@ -9,21 +10,6 @@
 
 namespace spreadmap::engine {
 
-namespace {
-// Distinct cell coordinates among c-1, c, c+1 along one axis (wrapped when periodic).
-int axis_neighbours(int c, int n, bool periodic, int out[3]) {
-  int k = 0;
-  for (int d = -1; d <= 1; ++d) {
-    int q = c + d;
-    if (periodic) q = (q + n) % n;
-    else if (q < 0 || q >= n) continue;
-    bool seen = false;
-    for (int t = 0; t < k; ++t) seen = seen || out[t] == q;
-    if (!seen) out[k++] = q;
-  }
-  return k;
-}
-}  // namespace
 
 template <class Real>
 void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid,
@@ -47,52 +33,22 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     auto &buf = thread_nbr_[t];
     buf.clear();
-    struct Range { std::uint32_t begin, end; } ranges[27];
-    int n_ranges = 0;
+    CellRanges ranges;
     std::size_t candidates = 0;
     std::uint32_t current_cell = no_index;
     for (std::size_t i = lo; i < hi; ++i) {
       if (cell[i] != current_cell) {  // particles are sorted by cell: recompute only on a new cell
         current_cell = cell[i];
-        int cc[3];
-        grid.coords(current_cell, cc);
-        int ax[3], ay[3], az[3];
-        const int kx = axis_neighbours(cc[0], grid.n[0], grid.periodic[0], ax);
-        const int ky = axis_neighbours(cc[1], grid.n[1], grid.periodic[1], ay);
-        const int kz = axis_neighbours(cc[2], grid.n[2], grid.periodic[2], az);
-        n_ranges = 0;
-        for (int a = 0; a < kz; ++a)
-          for (int b = 0; b < ky; ++b)
-            for (int c = 0; c < kx; ++c) {
-              const int nc[3] = {ax[c], ay[b], az[a]};
-              const std::size_t q = grid.index(nc);
-              if (cell_start[q] == cell_start[q + 1]) continue;
-              ranges[n_ranges++] = {cell_start[q], cell_start[q + 1]};
-            }
-        // Ascending cell order, so the neighbours of i come out sorted by index.
-        std::sort(ranges, ranges + n_ranges, [](const Range &a, const Range &b) { return a.begin < b.begin; });
+        ranges = neighbour_ranges(grid, current_cell, cell_start.data());
         candidates = 0;
-        for (int q = 0; q < n_ranges; ++q) candidates += ranges[q].end - ranges[q].begin;
+        for (int q = 0; q < ranges.n; ++q) candidates += ranges.end[q] - ranges.begin[q];
       }
-      const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i];
-      // sleeping (mobile given): two sleeping particles are not listed; symmetric, as the list is
-      const Real awake_i = mobile ? mobile[i] : Real(1);
       // Room for every candidate, then written without a branch (a kept neighbour advances the end).
       const std::size_t first = buf.size();
       buf.resize(first + candidates);
-      std::uint32_t *out = buf.data() + first;
-      std::uint32_t count = 0;
-      for (int q = 0; q < n_ranges; ++q) {
-        for (std::uint32_t j = ranges[q].begin; j < ranges[q].end; ++j) {
-          const Real dx = wrap(xi - p.x[j], len[0], per[0]);
-          const Real dy = wrap(yi - p.y[j], len[1], per[1]);
-          const Real dz = wrap(zi - p.z[j], len[2], per[2]);
-          const Real reach = (ri + p.r[j]) + skin;  // symmetric in i and j: the list is, too
-          out[count] = j;
-          const bool listed = !mobile || awake_i > 0 || mobile[j] > 0;
-          count += (dx * dx + dy * dy + dz * dz < reach * reach) & (j != i) & listed ? 1u : 0u;
-        }
-      }
+      const std::uint32_t count =
+          list_neighbours(static_cast<std::uint32_t>(i), p.x.data(), p.y.data(), p.z.data(), p.r.data(), mobile, len,
+                          per, skin, ranges, buf.data() + first, static_cast<std::uint32_t>(candidates));
       buf.resize(first + count);
       start[i + 1] = count;
     }
@@ -112,21 +68,9 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   // Carry history: the same (i, j) pair of particles in the previous list, found by old indices.
   const std::size_t old_n = old_start_.empty() ? 0 : old_start_.size() - 1;
 #pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
-    const std::size_t i = static_cast<std::size_t>(ii);
-    const std::uint32_t oi = p.list_index[i];
-    if (oi == no_index || oi >= old_n) continue;
-    const std::uint32_t ob = old_start_[oi], oe = old_start_[oi + 1];
-    for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
-      const std::uint32_t oj = p.list_index[nbr[k]];
-      if (oj == no_index) continue;
-      for (std::uint32_t ok = ob; ok < oe; ++ok) {
-        if (old_nbr_[ok] != oj) continue;
-        std::copy_n(old_hist_.begin() + std::size_t(ok) * history, history, hist.begin() + std::size_t(k) * history);
-        break;
-      }
-    }
-  }
+  for (long long ii = 0; ii < static_cast<long long>(n); ++ii)
+    carry_history(static_cast<std::uint32_t>(ii), p.list_index.data(), static_cast<std::uint32_t>(old_n), start.data(),
+                  nbr.data(), hist.data(), old_start_.data(), old_nbr_.data(), old_hist_.data(), history);
 }
 
 // mirror[k] for every entry: the lower entries (j < i) search i among j's neighbours (listed by

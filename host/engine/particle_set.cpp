@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <engine/errors.hpp>
 #include <engine/particle_set.hpp>
 
@@ -52,6 +53,17 @@ void ParticleSet::fill_defaults(double density, std::uint32_t first_id) {
     id.resize(n);
     for (std::size_t i = 0; i < n; ++i) id[i] = first_id + static_cast<std::uint32_t>(i);
   }
+}
+
+std::vector<double> ParticleSet::kinematics_by_id() const {
+  std::vector<std::size_t> order(size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return id[a] < id[b]; });
+  std::vector<double> out;
+  out.reserve(9 * order.size());
+  for (std::size_t i : order)
+    for (const auto *c : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz}) out.push_back((*c)[i]);
+  return out;
 }
 
 }  // namespace spreadmap::engine

@@ -25,6 +25,9 @@ struct ParticleSet {
   // Fills empty optional columns: zeros for velocities, ids first_id, first_id + 1, ... ; masses
   // from `density` when density > 0.
   void fill_defaults(double density, std::uint32_t first_id);
+  // x, y, z, vx, vy, vz, wx, wy, wz of every particle, in id order: two states compare bitwise
+  // whatever order their engines keep the particles in.
+  std::vector<double> kinematics_by_id() const;
 };
 
 }  // namespace spreadmap::engine

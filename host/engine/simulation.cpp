@@ -1,6 +1,7 @@
 #include <engine/cell_grid.hpp>
 #include <engine/errors.hpp>
 #include <engine/simulation.hpp>
+#include <engine/neighbour_listing.hpp>
 #include <engine/stability.hpp>
 #include <spreadmap/team.hpp>
 
@@ -102,6 +103,7 @@ template <class Real> void Simulation<Real>::resize_walls() {
 // particles and walls
 
 template <class Real> void Simulation<Real>::add_particles(ParticleSet set, double density) {
+  host_changes();
   set.validate("add_particles");
   if (set.mass.empty() && !(density > 0))
     throw SetupError("add_particles: the set has no mass column and no density was given; give density [kg/m^3]");
@@ -141,6 +143,7 @@ template <class Real> void Simulation<Real>::add_particles(ParticleSet set, doub
 }
 
 template <class Real> ParticleSet Simulation<Real>::state() const {
+  sync_host();
   ParticleSet s;
   const std::size_t n = p_.size();
   auto copy = [n](const std::vector<Real> &from, std::vector<double> &to) { to.assign(from.begin(), from.begin() + n); };
@@ -153,6 +156,7 @@ template <class Real> ParticleSet Simulation<Real>::state() const {
 }
 
 template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wall) {
+  host_changes();
   check_law(wall.law, "plane wall '" + wall.name + "'");
   const double len = std::sqrt(wall.normal[0] * wall.normal[0] + wall.normal[1] * wall.normal[1] +
                                wall.normal[2] * wall.normal[2]);
@@ -170,6 +174,7 @@ template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wal
 }
 
 template <class Real> std::size_t Simulation<Real>::add_geometry(GeometryWall geometry) {
+  host_changes();
   check_law(geometry.law, "geometry '" + geometry.name + "'");
   if (!geometry.ops || !geometry.ops->contacts_f64 || !geometry.ops->contacts_f32)
     throw SetupError(fmt::format("geometry '{}': no contacts function in its ops table", geometry.name));
@@ -183,6 +188,7 @@ template <class Real> std::size_t Simulation<Real>::add_geometry(GeometryWall ge
 }
 
 template <class Real> void Simulation<Real>::set_plane_wall_active(std::size_t i, bool active) {
+  host_changes();
   auto &pl = planes_.at(i);
   if (pl.wall.active == active) return;
   pl.wall.active = active;
@@ -194,6 +200,7 @@ template <class Real> void Simulation<Real>::set_plane_wall_active(std::size_t i
 
 template <class Real>
 void Simulation<Real>::set_plane_wall_velocity(std::size_t i, const std::array<double, 3> &velocity) {
+  host_changes();
   planes_.at(i).wall.velocity = velocity;
 }
 
@@ -385,8 +392,8 @@ template <class Real> Particles<Real> Simulation<Real>::view() {
 // must see: those touching it and those still holding history from an earlier contact (the law
 // clears it), in increasing order.
 template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
-  const Real px = Real(plane.wall.point[0]), py = Real(plane.wall.point[1]), pz = Real(plane.wall.point[2]);
-  const Real nx = Real(plane.wall.normal[0]), ny = Real(plane.wall.normal[1]), nz = Real(plane.wall.normal[2]);
+  const Real point[3] = {Real(plane.wall.point[0]), Real(plane.wall.point[1]), Real(plane.wall.point[2])};
+  const Real normal[3] = {Real(plane.wall.normal[0]), Real(plane.wall.normal[1]), Real(plane.wall.normal[2])};
   WallSlot &s = plane.slot;
   const unsigned history = s.history;
   const std::size_t n = p_.size();
@@ -402,7 +409,7 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
     mine.clear();
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     for (std::size_t i = lo; i < hi; ++i) {
-      const Real overlap = p_.r[i] - ((p_.x[i] - px) * nx + (p_.y[i] - py) * ny + (p_.z[i] - pz) * nz);
+      const Real overlap = plane_overlap(point, normal, p_.x[i], p_.y[i], p_.z[i], p_.r[i]);
       s.overlap[i] = overlap > 0 ? overlap : Real(0);
       bool held = false;
       for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
@@ -652,20 +659,14 @@ template <class Real> void Simulation<Real>::check_overlaps() {
   const Real *x = p_.x.data(), *y = p_.y.data(), *z = p_.z.data(), *r = p_.r.data();
   const std::uint32_t *start = list_.start.data(), *nbr = list_.nbr.data();
 #pragma omp parallel for schedule(static) reduction(+ : bad)
-  for (long long ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::uint32_t>(ii);
-    // the list is symmetric: each pair once, from its lower particle (the upper neighbours come last)
-    std::uint32_t k = start[i];
-    for (std::uint32_t q = start[i]; q < start[i + 1]; ++q) k += nbr[q] < i ? 1u : 0u;
-    for (; k < start[i + 1]; ++k) {
-      const std::uint32_t j = nbr[k];
-      const Real dx = wrap(x[i] - x[j], len[0], per[0]), dy = wrap(y[i] - y[j], len[1], per[1]),
-                 dz = wrap(z[i] - z[j], len[2], per[2]);
-      const Real smaller = r[i] < r[j] ? r[i] : r[j];
-      const Real allowed = (r[i] + r[j]) - 2 * limit * smaller;  // centre distance at the limit
-      bad += dx * dx + dy * dy + dz * dz < allowed * allowed ? 1u : 0u;
-    }
-  }
+  for (long long ii = 0; ii < n; ++ii)
+    bad += deep_overlaps(static_cast<std::uint32_t>(ii), x, y, z, r, start, nbr, len, per, limit);
+  report_deep_overlap(bad);
+}
+
+// After check_overlaps counted `bad` deep pairs (on either backend): finds the first and stops the run.
+template <class Real> void Simulation<Real>::report_deep_overlap(std::uint32_t bad) const {
+  const bool per[3] = {domain_.periodic[0], domain_.periodic[1], domain_.periodic[2]};
   auto advice = "the contacts are too soft for the speeds or loads of this scene, or dt is too large: stiffen the "
                 "contact law (e.g. a larger v_max or smaller overlap_max for hooke laws), lower the speeds, or use a "
                 "smaller dt; settings.overlap_limit sets the limit";
@@ -706,7 +707,35 @@ template <class Real> void Simulation<Real>::prepare() {
   if (!forces_valid_) compute_forces();
 }
 
+template <class Real> void Simulation<Real>::set_backend(std::unique_ptr<StepBackend<Real>> backend) {
+  sync_host();
+  backend_ = std::move(backend);
+  device_ahead_ = false;
+  host_changed_ = true;
+}
+
+template <class Real> void Simulation<Real>::sync_host() const {
+  if (!backend_ || !device_ahead_) return;
+  device_ahead_ = false;  // first: download() reads the host copy's sizes through the accessors
+  backend_->download(const_cast<Simulation &>(*this));
+}
+
+template <class Real> void Simulation<Real>::host_changes() {
+  sync_host();
+  host_changed_ = true;
+}
+
 template <class Real> void Simulation<Real>::step() {
+  if (backend_) {
+    if (!step_resolved_) resolve_step();
+    if (host_changed_) {
+      backend_->upload(*this);
+      host_changed_ = false;
+    }
+    device_ahead_ = true;
+    backend_->step(*this);
+    return;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const SerialScope serial(p_.size() < settings_.parallel_min_particles);
   prepare();
@@ -745,6 +774,7 @@ bool Simulation<Real>::run_until(double t_end, const StepCallback &callback, std
 // sleeping (Settings::sleep)
 
 template <class Real> void Simulation<Real>::force_rotation(bool on) {
+  host_changes();
   settings_.force_rotation = on;
   step_resolved_ = false;
 }

@@ -19,12 +19,14 @@
 #include <engine/particle_set.hpp>
 #include <engine/particle_subset.hpp>
 #include <engine/settings.hpp>
+#include <engine/step_backend.hpp>
 #include <engine/walls.hpp>
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -46,7 +48,10 @@ template <class Real = double> class Simulation {
   std::size_t size() const { return p_.size(); }
   // The current state in the engine's current (cell-sorted) order, in double.
   ParticleSet state() const;
-  const ParticleArrays<Real> &arrays() const { return p_; }
+  const ParticleArrays<Real> &arrays() const {
+    sync_host();
+    return p_;
+  }
 
   // --- walls ---------------------------------------------------------------------------------
   std::size_t add_plane_wall(PlaneWall wall);       // returns its index; before load_checkpoint
@@ -74,6 +79,11 @@ template <class Real = double> class Simulation {
   // number is a multiple of `every`. Returns false if the callback asked to stop.
   bool run_until(double t_end, const StepCallback &callback = {}, std::uint64_t every = 1);
 
+  // --- backend --------------------------------------------------------------------------------
+  // Steps run on `backend` from now on (nullptr: the CPU). The state moves to it at the next step.
+  void set_backend(std::unique_ptr<StepBackend<Real>> backend);
+  std::string backend_name() const { return backend_ ? backend_->name() : "cpu"; }
+
   // --- sleeping (Settings::sleep) --------------------------------------------------------------
   // Particles with x below x_max may fall asleep from now on (-infinity, the start: none may).
   void set_sleep_region(double x_max) { sleep_x_max_ = x_max; }
@@ -85,7 +95,10 @@ template <class Real = double> class Simulation {
   std::uint64_t removed_count() const { return counters_.removed; }
   const RunCounters &counters() const { return counters_; }
   bool rotation_integrated() const { return rotate_; }
-  std::size_t list_entries() const { return list_.entries(); }
+  std::size_t list_entries() const {
+    sync_host();
+    return list_.entries();
+  }
   double skin() const { return skin_; }
   const Domain &domain() const { return domain_; }
   const Settings &settings() const { return settings_; }
@@ -98,6 +111,12 @@ template <class Real = double> class Simulation {
   void load_checkpoint(const std::filesystem::path &path);
 
  private:
+  friend struct StepAccess<Real>;
+  // With a backend: the host copy is brought up to date before it is read, and marked changed
+  // (to be uploaded) before it is written.
+  void sync_host() const;
+  void host_changes();
+
   struct WallSlot {
     std::vector<Real> overlap, nx, ny, nz, vx, vy, vz, hist;
     unsigned history = 0;
@@ -139,6 +158,7 @@ template <class Real = double> class Simulation {
   bool kick_and_drift(Real half_dt, Real dt);  // returns true when the list must be rebuilt
   void kick_and_check(Real half_dt);
   void check_overlaps();
+  void report_deep_overlap(std::uint32_t bad) const;
   void update_sleep();
   void wake(std::uint32_t i);
   void find_border();
@@ -174,6 +194,10 @@ template <class Real = double> class Simulation {
   double sleep_x_max_ = -std::numeric_limits<double>::infinity();
   std::size_t asleep_ = 0, asleep_at_build_ = 0;
   std::vector<std::uint32_t> border_;
+  // The backend and which copy of the state is newer.
+  std::unique_ptr<StepBackend<Real>> backend_;
+  mutable bool device_ahead_ = false;  // the backend stepped since the host copy was written
+  bool host_changed_ = true;           // the host copy changed since the backend took it
 
   // Scratch (kept to avoid allocation in rebuilds).
   std::vector<std::uint32_t> perm_, cell_, cell_sorted_, cell_start_, scratch_index_;
@@ -181,6 +205,33 @@ template <class Real = double> class Simulation {
   std::vector<Real> inflated_radius_;   // radii + margin for the geometry search
   std::vector<std::vector<std::uint32_t>> thread_index_;  // per-thread index lists
   ParticleSubset<Real> subset_;
+};
+
+// The internals a step backend works on. Only a backend uses this.
+template <class Real> struct StepAccess {
+  using Sim = Simulation<Real>;
+  static ParticleArrays<Real> &particles(Sim &s) { return s.p_; }
+  static NeighbourList<Real> &list(Sim &s) { return s.list_; }
+  static auto &planes(Sim &s) { return s.planes_; }
+  static auto &geometries(Sim &s) { return s.geometries_; }
+  static const Settings &settings(const Sim &s) { return s.settings_; }
+  static const Domain &domain(const Sim &s) { return s.domain_; }
+  static const ContactLaw &pair_law(const Sim &s) { return s.pair_law_; }
+  static double &time(Sim &s) { return s.time_; }
+  static std::uint64_t &step(Sim &s) { return s.step_; }
+  static double dt(const Sim &s) { return s.dt_; }
+  static double skin(const Sim &s) { return s.skin_; }
+  static double speed_limit(const Sim &s) { return s.speed_limit_; }
+  static bool rotating(const Sim &s) { return s.rotate_; }
+  static bool &list_valid(Sim &s) { return s.list_valid_; }
+  static bool &forces_valid(Sim &s) { return s.forces_valid_; }
+  static RunCounters &counters(Sim &s) { return s.counters_; }
+  static std::size_t asleep(const Sim &s) { return s.asleep_; }
+  // Host-side work on the host copy (brought up to date first): removing escaped particles, and the
+  // run-time checks' error messages (they throw RunError).
+  static void remove_escaped(Sim &s) { s.remove_escaped(); }
+  [[noreturn]] static void report_bad_particle(const Sim &s) { s.report_bad_particle(); }
+  static void report_deep_overlap(const Sim &s, std::uint32_t bad) { s.report_deep_overlap(bad); }
 };
 
 extern template class Simulation<double>;

@@ -28,6 +28,13 @@ struct PlaneWall {
   std::string name = "plane";               // for messages
 };
 
+// How deep a sphere (centre x, y, z, radius r) sinks into a plane through p with unit normal n:
+// > 0 touching. Host-device: both backends' plane contacts.
+template <class Real>
+SM_HD Real plane_overlap(const Real p[3], const Real n[3], Real x, Real y, Real z, Real r) {
+  return r - ((x - p[0]) * n[0] + (y - p[1]) * n[1] + (z - p[2]) * n[2]);
+}
+
 // A geometry plugin (spreader, substrate shape) producing wall contacts each step.
 struct GeometryWall {
   const sm_geometry_ops_v1 *ops = nullptr;

@@ -1,5 +1,10 @@
 #include "workflow/case_setup.hpp"
 
+#ifdef SPREADMAP_WITH_CUDA
+#include "cuda/backend.hpp"
+#include "cuda/resident_stepper.hpp"
+#endif
+
 #include <spdlog/spdlog.h>
 #include <spreadmap/contact.hpp>
 #include <spreadmap/geometry.hpp>
@@ -26,6 +31,28 @@ CasePlugins::CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const
 }
 
 engine::ContactLaw CasePlugins::law(const PluginInstance &i) const { return {i.ops<sm_contact_ops_v1>(), i.get()}; }
+
+namespace {
+// With scene.backend: cuda (or auto on a machine with a GPU), the simulation steps on the GPU: the
+// kernels of its pair law, of each plane wall's law (plane_laws, in the order the walls were added)
+// and of the spreader with its law.
+template <class Real>
+void attach_backend(engine::Simulation<Real> &sim, const nlohmann::json &scene, const CasePlugins &plugins,
+                    std::initializer_list<const PluginInstance *> plane_laws) {
+#ifdef SPREADMAP_WITH_CUDA
+  std::string message;  // said once per run by the simulate stage
+  if (cuda::choose_backend(scene.value("backend", std::string("auto")), message) != cuda::Backend::cuda) return;
+  cuda::ResidentLaws laws;
+  laws.pair = cuda::contact_kernels(*plugins.pair.plugin());
+  for (const PluginInstance *law : plane_laws) laws.planes.push_back(cuda::contact_kernels(*law->plugin()));
+  laws.geometries.push_back(
+      {cuda::spreader_kernels(*plugins.spreader.plugin()), cuda::contact_kernels(*plugins.spreader_law.plugin())});
+  sim.set_backend(cuda::make_resident_stepper<Real>(sim, std::move(laws)));
+#else
+  (void)sim, (void)scene, (void)plugins, (void)plane_laws;
+#endif
+}
+}  // namespace
 
 engine::Domain make_domain(const nlohmann::json &scene) {
   const auto &d = scene["domain"];
@@ -111,6 +138,7 @@ ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const 
   sim.add_plane_wall({{spec.region.hi[0], 0, 0}, {-1, 0, 0}, {0, 0, 0}, plugins.law(plugins.spreader_law), true, "heap front wall"});
   sim.add_geometry({plugins.spreader.ops<sm_geometry_ops_v1>(), plugins.spreader.get(), plugins.law(plugins.spreader_law),
                     "spreader/" + scene["spreader"]["use"].get<std::string>()});
+  attach_backend(sim, scene, plugins, {&plugins.substrate, &plugins.spreader_law, &plugins.spreader_law});
   const double t_settle = powder["settle_time"], v_rest = powder["settle_speed"];
   const double min_time = 0.3 * t_settle;
   sim.run_until(t_settle, [&](const engine::Simulation<Real> &s) {
@@ -145,6 +173,7 @@ std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &sce
   sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, p.law(p.substrate), true, "substrate"});
   sim.add_geometry({run->spreader_ops(), p.spreader.get(), p.law(p.spreader_law),
                     "spreader/" + scene["spreader"]["use"].get<std::string>()});
+  attach_backend(sim, scene, p, {&p.substrate});
   return run;
 }
 

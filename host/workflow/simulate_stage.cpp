@@ -103,7 +103,7 @@ class SimulateStage : public Stage {
       spdlog::info("simulate: {} cases, {} to run, {} finished already", n, todo.size(), n - todo.size());
     std::string backend_note;  // throws InputError for `cuda` with no usable device
     const cuda::Backend backend = cuda::choose_backend(ctx.scene["backend"].get<std::string>(), backend_note);
-    (void)backend;  // the engine runs on the CPU until a GPU engine path exists (host/cuda/backend.hpp)
+    (void)backend;  // each case attaches the backend itself (case_setup.cpp: attach_backend)
     if (only_case || ctx.options.executor) {  // the cases run one by one here, on MPI ranks or as Slurm tasks
       CaseBatch batch{{}, n};
       for (std::size_t k = 0; k < todo.size(); ++k) batch.jobs.push_back({todo_index[k], std::move(todo[k]), render_});

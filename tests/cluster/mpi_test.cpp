@@ -4,6 +4,8 @@
 // error ends every rank instead of leaving workers waiting.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <fstream>
 #include <set>
 
 #include "cluster/cluster_support.hpp"
@@ -90,4 +92,31 @@ TEST(MpiExecutor, AnErrorOnRankZeroEndsEveryRank) {
   EXPECT_EQ(mpi.exit_code, 2) << mpi.describe();
   EXPECT_EQ(t::count(mpi.err, "scene.powdr: unknown key"), 1u) << "the error once, from rank 0:\n" << mpi.err;
   EXPECT_EQ(t::crash_marker(mpi.err), "") << mpi.err;
+}
+
+TEST(MpiExecutor, TheQuickstartsSimulateAndCharacteriseUnderTwoRanksGiveTheSerialMetricsCsv) {
+  // workflows/quickstart.yaml itself (its scene and 3 x 3 design; figures off, train and map left
+  // out), once serially and once under mpirun -n 2: metrics.csv byte for byte (deterministic mode;
+  // the file holds no timings or host names).
+  t::Scratch scratch("mpi_quickstart");
+  std::string text = t::slurp(fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml");
+  for (const std::string stage : {"  - simulate:\n", "  - characterise:\n"}) {
+    const auto at = text.find(stage);
+    ASSERT_NE(at, std::string::npos) << stage;
+    text.insert(at + stage.size(), "      render: false\n");
+  }
+  const fs::path workflow = scratch.dir / "quickstart.yaml";
+  std::ofstream(workflow) << text;
+  const fs::path serial = scratch.dir / "serial", mpi = scratch.dir / "mpi";
+  const t::Outcome s = t::run(
+      {{"run", workflow.string(), "--only", "simulate,characterise", "--out", serial.string(), "--jobs", "2"}, {}, {}, {}});
+  ASSERT_EQ(s.exit_code, 0) << s.describe();
+  const t::Outcome m = t::run(t::under_mpirun(
+      2, {"run", workflow.string(), "--only", "simulate,characterise", "--out", mpi.string(), "--executor", "mpi"}));
+  ASSERT_TRUE(m.exited) << m.describe();
+  ASSERT_EQ(m.exit_code, 0) << m.describe();
+  const std::string a = t::slurp(serial / "metrics.csv"), b = t::slurp(mpi / "metrics.csv");
+  EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), 10) << "a header and the 9 cases:\n" << a;
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(t::count(m.err, "characterise: 9 cases in metrics.csv"), 1u) << m.err;
 }

@@ -1,6 +1,7 @@
 #!/bin/bash
-# A one-node Slurm on localhost runs the reduced quickstart's simulate stage as job arrays, then the
-# stages job, to completion; the result must equal a serial run's byte for byte.
+# A one-node Slurm on localhost runs the quickstart's simulate stage (workflows/quickstart.yaml, its
+# scene and 3 x 3 design, figures off, train and map left out) as job arrays, then the stages job, to
+# completion; metrics.csv must equal a serial run's byte for byte.
 #
 #   bash tests/cluster/slurm_localhost.sh BUILD/bin/spreadmap
 #
@@ -11,7 +12,6 @@
 set -euo pipefail
 spreadmap=$(readlink -f "${1:?usage: slurm_localhost.sh PATH/TO/spreadmap}")
 here=$(cd "$(dirname "$0")" && pwd)
-workflow="$here/data/mini_quickstart.yaml"
 
 fail() { echo "slurm_localhost: $*" >&2; exit 1; }
 for p in munged mungekey slurmctld slurmd sbatch squeue sinfo; do
@@ -37,6 +37,11 @@ import socket
 s = [socket.socket() for _ in range(2)]
 for x in s: x.bind(("127.0.0.1", 0))
 print(*[x.getsockname()[1] for x in s])')
+
+workflow="$top/quickstart.yaml"
+sed -e '/^  - train:/,$d' -e 's/^  - simulate:$/  - simulate:\n      render: false/' \
+    -e 's/^  - characterise:$/  - characterise:\n      render: false/' "$here/../../workflows/quickstart.yaml" > "$workflow"
+grep -q 'render: false' "$workflow" || fail "could not derive the test's workflow from workflows/quickstart.yaml"
 
 mkdir -p "$top/munge" "$top/state" "$top/spool"
 chmod 700 "$top/munge"
@@ -84,7 +89,7 @@ done
 [ "$(sinfo -h -o %T)" = idle ] || { tail -20 "$top/slurmctld.log" "$top/slurmd.log" >&2; fail "the node did not come up"; }
 
 # the reference, then the same workflow through Slurm
-"$spreadmap" run "$workflow" --out "$top/serial" -q
+"$spreadmap" run "$workflow" --out "$top/serial" --jobs 2 -q
 run="$top/run"
 "$spreadmap" run "$workflow" --out "$run" --executor slurm | tee "$top/submitted"
 [ "$(grep -c '^submitted job [0-9]*:' "$top/submitted")" -eq 3 ] || fail "expected three jobs (heap array, cases array, stages)"
@@ -95,10 +100,10 @@ done
 [ -z "$(squeue -h)" ] || { squeue; fail "jobs still queued or running after 5 minutes"; }
 
 for log in "$run"/slurm/logs/*.log; do echo "== $log"; cat "$log"; done
-for k in 0 1 2 3; do
+for k in 0 1 2 3 4 5 6 7 8; do
   grep -q '"status": "done"' "$run/cases/c00$k/case.json" || fail "case c00$k did not finish"
 done
 [ -f "$run/metrics.csv" ] || fail "the stages job wrote no metrics.csv"
 cmp "$top/serial/metrics.csv" "$run/metrics.csv" || fail "metrics.csv differs from the serial run's"
-grep -q 'characterise: 4 cases in metrics.csv' "$run/slurm/logs/stages.log" || fail "the stages job did not characterise"
-echo "slurm_localhost: 4 cases as array tasks and the stages job: metrics.csv equals the serial run's"
+grep -q 'characterise: 9 cases in metrics.csv' "$run/slurm/logs/stages.log" || fail "the stages job did not characterise"
+echo "slurm_localhost: the quickstart's 9 cases as array tasks and the stages job: metrics.csv equals the serial run's"

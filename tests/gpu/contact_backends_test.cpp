@@ -13,8 +13,7 @@
 #include <tuple>
 #include <vector>
 
-#include "core/registry.hpp"
-#include "cuda/backend.hpp"
+#include "gpu/gpu_support.hpp"
 #include "cuda/device_state.hpp"
 #include "cuda/forces.hpp"
 #include "gpu/plugin_params.hpp"
@@ -26,13 +25,6 @@ using nlohmann::json;
 
 namespace {
 
-#define REQUIRE_CUDA_DEVICE()                                                                 \
-  if (sm::cuda::device_count() == 0) GTEST_SKIP() << "no CUDA device: " << sm::cuda::probe_devices().why_none
-
-sm::PluginRegistry &registry() {
-  static sm::PluginRegistry r({fs::path(SPREADMAP_BINARY_DIR) / "lib" / "spreadmap" / "plugins"});
-  return r;
-}
 
 // Every value within `rel` of the CPU's, relative to itself or, for a component that nearly cancels,
 // to 1e-3 of the array's largest value. Forces must not be trivially zero; a record field may be

@@ -133,17 +133,45 @@ double level_step(const std::vector<double>& levels) {
   return std::isfinite(step) ? step : 1.0;
 }
 
-// Draws every iso-line of `levels`, labelled at fraction `where` of lines long enough to carry a label.
+// Label boxes already drawn (pixels), so that a new label goes where it covers none of them.
+struct LabelBoxes {
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Box> boxes;
+  // The box of a centred one-line label of `chars` characters (UTF-8 bytes overcount a little).
+  static Box around(double x, double y, std::size_t chars, double font) {
+    const double half_w = 0.3 * font * double(chars) + 4, half_h = 0.65 * font + 2;
+    return {x - half_w, y - half_h, x + half_w, y + half_h};
+  }
+  bool free(const Box& b) const {
+    for (const auto& o : boxes)
+      if (b.x0 < o.x1 && o.x0 < b.x1 && b.y0 < o.y1 && o.y0 < b.y1) return false;
+    return true;
+  }
+};
+
+// Draws every iso-line of `levels`, each labelled where its label covers no earlier one: at fraction
+// `where` of the line if free, else at the nearest free fraction, else not at all.
 void labelled_lines(detail::Canvas& c, vtkPolyData* grid, const char* array, const std::vector<double>& levels,
                     const Rgb& colour, double width, detail::LineStyle style, const std::string& prefix,
-                    const std::string& unit, double where, double font) {
+                    const std::string& unit, double where, double font, LabelBoxes& placed) {
   const double step = level_step(levels);
   for (double level : levels)
     for (const auto& line : iso_lines(grid, array, level)) {
       c.polyline(line, colour, width, style);
-      const auto [p, length] = along(line, where);
-      if (length > 160 * c.s())
-        c.text(prefix + value_text(level, step, unit), p[0], p[1], font, 1, 1, colour, 0, false, true);
+      const std::string text = prefix + value_text(level, step, unit);
+      for (double shift : {0.0, 0.12, -0.12, 0.24, -0.24, 0.36, -0.36}) {
+        const double t = where + shift;
+        if (t < 0.05 || t > 0.95) continue;
+        const auto [p, length] = along(line, t);
+        if (length <= 160 * c.s()) break;
+        const auto box = LabelBoxes::around(p[0], p[1], text.size(), font);
+        if (!placed.free(box)) continue;
+        c.text(text, p[0], p[1], font, 1, 1, colour, 0, false, true);
+        placed.boxes.push_back(box);
+        break;
+      }
     }
 }
 }  // namespace
@@ -175,6 +203,7 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
   std::vector<Rgb> band_colours;
   for (std::size_t i = 0; i + 1 < rq_levels.size(); ++i)
     band_colours.push_back(colour_at(ColourMap::yellow_red, rq_levels.size() > 2 ? i / double(rq_levels.size() - 2) : 0.5));
+  LabelBoxes placed;  // every contour label, so that none is drawn over another
   if (rq_levels.size() >= 2) {
     grid->GetPointData()->SetActiveScalars("rq");
     vtkNew<vtkBandedPolyDataContourFilter> bands;
@@ -207,18 +236,19 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
     vtkNew<vtkActor2D> actor;
     actor->SetMapper(mapper);
     fig.renderer()->AddActor2D(actor);
-    // Thin band edges, labelled near the lower-left third so they do not collide with V_s labels.
-    labelled_lines(c, grid, "rq", rq_levels, {0.45, 0.2, 0.1}, 1.2 * s, LineStyle::solid, "", um, 0.3, 17 * s);
+    // Thin band edges, labelled near the lower-left third, away from most V_s labels.
+    labelled_lines(c, grid, "rq", rq_levels, {0.45, 0.2, 0.1}, 1.2 * s, LineStyle::solid, "", um, 0.3, 17 * s, placed);
   }
 
   const Rgb vs_colour{0.05, 0.1, 0.35}, std_colour{0.45, 0.1, 0.6}, frontier_colour{0.0, 0.45, 0.95};
   const auto vs_levels = in.vs_levels.empty() ? auto_levels(in.vs, 1e6, 7) : scaled(in.vs_levels, 1e6);
-  labelled_lines(c, grid, "vs", vs_levels, vs_colour, 2.8 * s, LineStyle::solid, "", mm2s, 0.65, 19 * s);
+  labelled_lines(c, grid, "vs", vs_levels, vs_colour, 2.8 * s, LineStyle::solid, "", mm2s, 0.65, 19 * s, placed);
 
   const bool has_std = !in.rq_std.empty();
   if (has_std) {
     const auto std_levels = in.std_levels.empty() ? auto_levels(in.rq_std, 1e6, 3) : scaled(in.std_levels, 1e6);
-    labelled_lines(c, grid, "rq_std", std_levels, std_colour, 2.2 * s, LineStyle::dashed, unicode_text() ? "σ " : "std ", um, 0.5, 17 * s);
+    labelled_lines(c, grid, "rq_std", std_levels, std_colour, 2.2 * s, LineStyle::dashed, unicode_text() ? "σ " : "std ", um, 0.5, 17 * s,
+                   placed);
   }
 
   if (in.frontier.size() >= 2) {
@@ -237,12 +267,17 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
     std::string text = label;
     if (in.rq_target > 0) {
       char t[64];
-      std::snprintf(t, sizeof t, " (target %s %.1f %s)", unicode_text() ? "≤" : "<=", in.rq_target * 1e6, um.c_str());
+      std::snprintf(t, sizeof t, "\nfor the target R_q %s %.1f %s", unicode_text() ? "≤" : "<=", in.rq_target * 1e6, um.c_str());
       text += t;
     }
-    const bool right_half = p[0] > f.px0 + 0.5 * f.pw;
+    // on the side of the star where the label fits inside the plot (its longest line decides)
+    std::size_t longest = 0, from = 0;
+    for (std::size_t k = 0; k <= text.size(); ++k)
+      if (k == text.size() || text[k] == '\n') longest = std::max(longest, k - from), from = k + 1;
+    const double label_px = 0.55 * 19 * s * double(longest) + 30 * s;
+    const bool left = p[0] + label_px > f.px0 + f.pw && p[0] - label_px >= f.px0;
     const bool upper_half = p[1] > f.py0 + 0.5 * f.ph;
-    c.text(text, p[0] + (right_half ? -30 : 30) * s, p[1] + (upper_half ? -30 : 30) * s, 19 * s, right_half ? 2 : 0,
+    c.text(text, p[0] + (left ? -30 : 30) * s, p[1] + (upper_half ? -30 : 30) * s, 19 * s, left ? 2 : 0,
            upper_half ? 2 : 0, {0, 0, 0}, 0, false, true);
   }
 

@@ -120,7 +120,7 @@ void tradeoff(const TradeoffInput& in, const std::filesystem::path& png, const O
       {"R_q heap-to-heap scatter (reference)", rq_colour, true, LineStyle::dashed},
   };
   // top right: cheap fidelities err most (top left), the reference sits right
-  c.legend(f.px0 + f.pw - 470 * s, f.py0 + f.ph - 14 * s, legend, 20 * s);
+  c.legend(f.px0 + f.pw - 560 * s, f.py0 + f.ph - 14 * s, legend, 20 * s);
   fig.add_title();
   fig.write(png);
 }

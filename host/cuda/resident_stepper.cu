@@ -1,0 +1,590 @@
+// The CUDA backend's step (resident_stepper.hpp): state resident in device memory, one kernel per
+// stage, the engine's host-device functions inside. Compiled by nvcc into spreadmap_cuda.
+#include "cuda/resident_stepper.hpp"
+
+#include <cub/cub.cuh>
+#include <cuda_runtime.h>
+
+#include <chrono>
+#include <cstring>
+#include <map>
+#include <string>
+
+#include "core/error.hpp"
+#include "cuda/device_array.hpp"
+#include "engine/cell_grid.hpp"
+#include "engine/errors.hpp"
+#include "engine/kick_drift.hpp"
+#include "engine/neighbour_listing.hpp"
+#include "engine/walls.hpp"
+
+namespace spreadmap::cuda {
+namespace {
+
+constexpr unsigned block_size = 128;  // a multiple of the warp: the reductions below need whole warps
+unsigned blocks_for(std::size_t n) { return unsigned((n + block_size - 1) / block_size); }
+
+void ok(cudaError_t e, const char *doing) { check(static_cast<int>(e), doing); }
+
+// What a kernel pass reports to the host (copied back once per pass).
+struct Report {
+  unsigned long long d2_bits;  // largest squared displacement since the list build, a double's bits
+  unsigned int escaped, nonfinite, bad;
+};
+
+__device__ unsigned long long warp_max(unsigned long long v) {
+  for (int o = 16; o > 0; o >>= 1) {
+    const unsigned long long w = __shfl_down_sync(0xffffffffu, v, o);
+    v = w > v ? w : v;
+  }
+  return v;
+}
+__device__ unsigned long long warp_min(unsigned long long v) {
+  for (int o = 16; o > 0; o >>= 1) {
+    const unsigned long long w = __shfl_down_sync(0xffffffffu, v, o);
+    v = w < v ? w : v;
+  }
+  return v;
+}
+__device__ unsigned int warp_sum(unsigned int v) {
+  for (int o = 16; o > 0; o >>= 1) v += __shfl_down_sync(0xffffffffu, v, o);
+  return v;
+}
+
+// Every lane of every warp calls this (lanes past the end with neutral values); lane 0 adds its
+// warp's share. d2 >= 0 or NaN: its bits order as the values do, NaN above every number.
+__device__ void add_report(Report *out, double d2, unsigned escaped, unsigned nonfinite, unsigned bad) {
+  const unsigned long long m = warp_max(static_cast<unsigned long long>(__double_as_longlong(d2)));
+  const unsigned e = warp_sum(escaped), f = warp_sum(nonfinite), b = warp_sum(bad);
+  if ((threadIdx.x & 31u) != 0) return;
+  if (m) atomicMax(&out->d2_bits, m);
+  if (e) atomicAdd(&out->escaped, e);
+  if (f) atomicAdd(&out->nonfinite, f);
+  if (b) atomicAdd(&out->bad, b);
+}
+
+template <class Real, bool PX, bool PY, bool PZ, bool Rotate>
+__global__ void kick_drift_kernel(engine::KickDrift<Real> k, std::uint32_t n, Report *out) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  double d2 = 0;
+  unsigned escaped = 0, nonfinite = 0;
+  if (i < n) {
+    engine::detail::half_kick<Real, Rotate, false>(k, i);
+    const engine::detail::Drifted<Real> d = engine::detail::drift<Real, PX, PY, PZ>(k, i);
+    d2 = double(d.d2), escaped = d.escaped, nonfinite = d.nonfinite;
+  }
+  add_report(out, d2, escaped, nonfinite, 0);
+}
+
+template <class Real, bool Rotate>
+__global__ void kick_check_kernel(engine::KickDrift<Real> k, Real limit2, std::uint32_t n, Report *out) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  unsigned bad = 0;
+  if (i < n) {
+    engine::detail::half_kick<Real, Rotate, false>(k, i);
+    bad = engine::detail::too_fast(k, limit2, i);
+  }
+  add_report(out, 0.0, 0, 0, bad);
+}
+
+// Doubles as unsigned integers that order as the values do (for atomicMin / atomicMax).
+__device__ unsigned long long ordered(double v) {
+  const auto b = static_cast<unsigned long long>(__double_as_longlong(v));
+  return (b >> 63) ? ~b : b | 0x8000000000000000ull;
+}
+double from_ordered(unsigned long long u) {
+  const unsigned long long b = (u >> 63) ? u & 0x7fffffffffffffffull : ~u;
+  double v;
+  std::memcpy(&v, &b, sizeof v);
+  return v;
+}
+
+struct Bounds {
+  unsigned long long lo[3], hi[3], r_max;
+};
+
+template <class Real>
+__global__ void bounds_kernel(const Real *x, const Real *y, const Real *z, const Real *r, std::uint32_t n, Bounds *out) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const Real *c[3] = {x, y, z};
+  for (int a = 0; a < 3; ++a) {
+    const unsigned long long lo = warp_min(i < n ? ordered(double(c[a][i])) : ~0ull);
+    const unsigned long long hi = warp_max(i < n ? ordered(double(c[a][i])) : 0ull);
+    if ((threadIdx.x & 31u) == 0) atomicMin(&out->lo[a], lo), atomicMax(&out->hi[a], hi);
+  }
+  const unsigned long long rm = warp_max(i < n ? ordered(double(r[i])) : 0ull);
+  if ((threadIdx.x & 31u) == 0) atomicMax(&out->r_max, rm);
+}
+
+template <class Real>
+__global__ void cell_kernel(engine::CellGrid<Real> grid, const Real *x, const Real *y, const Real *z, std::uint32_t n,
+                            std::uint32_t *cell, std::uint32_t *index) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  cell[i] = grid.cell_of(x[i], y[i], z[i]);
+  index[i] = i;
+}
+
+__global__ void count_cells_kernel(const std::uint32_t *cell, std::uint32_t n, std::uint32_t *count) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) atomicAdd(&count[cell[i]], 1u);
+}
+
+template <class T>
+__global__ void gather_kernel(const T *in, T *out, const std::uint32_t *from, std::uint32_t n, unsigned stride) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  for (unsigned q = 0; q < stride; ++q) out[std::size_t(i) * stride + q] = in[std::size_t(from[i]) * stride + q];
+}
+
+// What the list kernels read: the sorted particles, the grid and its cell ranges.
+template <class Real> struct ListArgs {
+  const Real *x, *y, *z, *r;
+  engine::CellGrid<Real> grid;
+  const std::uint32_t *cell, *cell_start;
+  Real len[3], skin;
+  bool per[3];
+  std::uint32_t n;
+};
+
+template <class Real> __global__ void list_count_kernel(ListArgs<Real> a, std::uint32_t *count) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= a.n) return;
+  const engine::CellRanges ranges = engine::neighbour_ranges(a.grid, a.cell[i], a.cell_start);
+  count[i] = engine::list_neighbours(i, a.x, a.y, a.z, a.r, static_cast<const Real *>(nullptr), a.len, a.per, a.skin,
+                                     ranges, static_cast<std::uint32_t *>(nullptr), 0u);
+}
+
+template <class Real> __global__ void list_fill_kernel(ListArgs<Real> a, const std::uint32_t *start, std::uint32_t *nbr) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= a.n) return;
+  const engine::CellRanges ranges = engine::neighbour_ranges(a.grid, a.cell[i], a.cell_start);
+  engine::list_neighbours(i, a.x, a.y, a.z, a.r, static_cast<const Real *>(nullptr), a.len, a.per, a.skin, ranges,
+                          nbr + start[i], start[i + 1] - start[i]);
+}
+
+template <class Real>
+__global__ void carry_kernel(const std::uint32_t *list_index, std::uint32_t old_n, const std::uint32_t *start,
+                             const std::uint32_t *nbr, Real *hist, const std::uint32_t *old_start,
+                             const std::uint32_t *old_nbr, const Real *old_hist, unsigned history, std::uint32_t n) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < n) engine::carry_history(i, list_index, old_n, start, nbr, hist, old_start, old_nbr, old_hist, history);
+}
+
+template <class Real>
+__global__ void after_build_kernel(const Real *x, const Real *y, const Real *z, Real *x0, Real *y0, Real *z0,
+                                   std::uint32_t *list_index, std::uint32_t n) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  x0[i] = x[i], y0[i] = y[i], z0[i] = z[i];
+  list_index[i] = i;
+}
+
+// A plane's dense wall records: overlap (0 when apart), its normal and velocity.
+template <class Real> struct PlaneArgs {
+  Real point[3], normal[3], velocity[3];
+};
+template <class Real>
+__global__ void plane_kernel(PlaneArgs<Real> pl, const Real *x, const Real *y, const Real *z, const Real *r,
+                             std::uint32_t n, WallContacts<Real> w) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const Real overlap = engine::plane_overlap(pl.point, pl.normal, x[i], y[i], z[i], r[i]);
+  w.overlap[i] = overlap > 0 ? overlap : Real(0);
+  w.nx[i] = pl.normal[0], w.ny[i] = pl.normal[1], w.nz[i] = pl.normal[2];
+  w.vx[i] = pl.velocity[0], w.vy[i] = pl.velocity[1], w.vz[i] = pl.velocity[2];
+}
+
+template <class Real>
+__global__ void deep_pairs_kernel(ListArgs<Real> a, const std::uint32_t *start, const std::uint32_t *nbr, Real limit,
+                                  Report *out) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  const unsigned bad = i < a.n ? engine::deep_overlaps(i, a.x, a.y, a.z, a.r, start, nbr, a.len, a.per, limit) : 0u;
+  add_report(out, 0.0, 0, 0, bad);
+}
+
+template <class Real>
+__global__ void deep_wall_kernel(const Real *overlap, const Real *r, Real limit, std::uint32_t n, Report *out) {
+  const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
+  add_report(out, 0.0, 0, 0, i < n && overlap[i] > limit * 2 * r[i] ? 1u : 0u);
+}
+
+// Device copies of one wall slot's records and history.
+template <class Real> struct DeviceSlot {
+  DeviceArray<Real> a[7], hist, scratch;  // overlap, nx, ny, nz, vx, vy, vz
+  WallContacts<Real> view(std::uint32_t n) {
+    return {n, a[0].data(), a[1].data(), a[2].data(), a[3].data(), a[4].data(), a[5].data(), a[6].data(), hist.data()};
+  }
+};
+
+template <class Real> class ResidentStepper final : public engine::StepBackend<Real> {
+  using Access = engine::StepAccess<Real>;
+  using Sim = engine::Simulation<Real>;
+
+ public:
+  ResidentStepper(ResidentLaws laws, int device) : laws_(std::move(laws)), device_(device) {
+    select_device(device_);
+    report_.resize(1);
+    bounds_.resize(1);
+  }
+  std::string name() const override { return "cuda on " + device_name(device_); }
+
+  void upload(Sim &sim) override {
+    select_device(device_);
+    auto &p = Access::particles(sim);
+    n_ = static_cast<std::uint32_t>(p.size());
+    real_.clear();
+    index_.clear();
+    std::size_t k = 0;
+    p.for_each_real([&](std::vector<Real> &c) {
+      if (real_.size() <= k) real_.emplace_back();
+      real_column_[&c] = k;
+      real_[k++].upload(c.data(), c.size());
+    });
+    k = 0;
+    p.for_each_index([&](std::vector<std::uint32_t> &c) {
+      if (index_.size() <= k) index_.emplace_back();
+      index_column_[&c] = k;
+      index_[k++].upload(c.data(), c.size());
+    });
+    auto &list = Access::list(sim);
+    history_ = Access::pair_law(sim).ops->history;
+    if (Access::list_valid(sim) && list.start.size() == std::size_t(n_) + 1) {
+      start_.upload(list.start.data(), list.start.size());
+      nbr_.upload(list.nbr.data(), list.nbr.size());
+      hist_.upload(list.hist.data(), list.hist.size());
+    } else {
+      Access::list_valid(sim) = false;
+    }
+    slots_.clear();
+    slots_.resize(Access::planes(sim).size() + Access::geometries(sim).size());
+    std::size_t s = 0;
+    auto put = [&](auto &slot) {
+      const std::vector<Real> *from[7] = {&slot.overlap, &slot.nx, &slot.ny, &slot.nz, &slot.vx, &slot.vy, &slot.vz};
+      for (int q = 0; q < 7; ++q) slots_[s].a[q].upload(from[q]->data(), from[q]->size());
+      slots_[s].hist.upload(slot.hist.data(), slot.hist.size());
+      ++s;
+    };
+    for (auto &pl : Access::planes(sim)) put(pl.slot);
+    for (auto &ge : Access::geometries(sim)) put(ge.slot);
+  }
+
+  void download(Sim &sim) override {
+    select_device(device_);
+    auto &p = Access::particles(sim);
+    p.for_each_real([&](std::vector<Real> &c) { real_[real_column_.at(&c)].download(c.data()); });
+    p.for_each_index([&](std::vector<std::uint32_t> &c) { index_[index_column_.at(&c)].download(c.data()); });
+    auto &list = Access::list(sim);
+    list.start.resize(start_.size());
+    list.nbr.resize(nbr_.size());
+    list.hist.resize(hist_.size());
+    start_.download(list.start.data());
+    nbr_.download(list.nbr.data());
+    hist_.download(list.hist.data());
+    list.restore_mirror(Access::settings(sim).pairs_once, history_);
+    std::size_t s = 0;
+    auto get = [&](auto &slot) {
+      std::vector<Real> *to[7] = {&slot.overlap, &slot.nx, &slot.ny, &slot.nz, &slot.vx, &slot.vy, &slot.vz};
+      for (int q = 0; q < 7; ++q) slots_[s].a[q].download(to[q]->data());
+      slots_[s].hist.download(slot.hist.data());
+      ++s;
+    };
+    for (auto &pl : Access::planes(sim)) get(pl.slot);
+    for (auto &ge : Access::geometries(sim)) get(ge.slot);
+  }
+
+  void step(Sim &sim) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    select_device(device_);
+    const auto &settings = Access::settings(sim);
+    auto &counters = Access::counters(sim);
+    if (!Access::list_valid(sim)) rebuild(sim);
+    if (!Access::forces_valid(sim)) forces(sim);
+    const Real dt = Real(Access::dt(sim)), half = Real(0.5 * Access::dt(sim));
+    // first half kick and drift
+    const Report first = run_reported([&](Report *out) { launch_kick_drift(sim, half, dt, out); }, "the first half kick");
+    if (first.nonfinite > 0) fail_on_host(sim, [&] { Access::report_bad_particle(sim); });
+    bool rebuild_now = !Access::list_valid(sim);
+    if (first.escaped > 0) {
+      sim_to_host(sim);
+      Access::remove_escaped(sim);
+      upload(sim);
+      rebuild_now = true;
+    }
+    double largest;
+    {
+      const unsigned long long bits = first.d2_bits;
+      std::memcpy(&largest, &bits, sizeof largest);
+    }
+    const double half_skin = 0.5 * Access::skin(sim);
+    rebuild_now = rebuild_now || !(largest <= half_skin * half_skin);
+    for (auto &pl : Access::planes(sim))
+      for (int a = 0; a < 3; ++a) pl.wall.point[a] += Access::dt(sim) * pl.wall.velocity[a];
+    Access::time(sim) += Access::dt(sim);
+    ++Access::step(sim);
+    if (rebuild_now) rebuild(sim);
+    forces(sim);
+    const Real limit2 = Real(Access::speed_limit(sim) * Access::speed_limit(sim));  // as the CPU rounds it
+    const Report second = run_reported([&](Report *out) { launch_kick_check(sim, half, limit2, out); },
+                                       "the second half kick");
+    if (second.bad > 0) fail_on_host(sim, [&] { Access::report_bad_particle(sim); });
+    if (Access::step(sim) % settings.check_every == 0) {
+      const Report deep = run_reported([&](Report *out) { launch_deep(sim, out); }, "the overlap check");
+      if (deep.bad > 0) fail_on_host(sim, [&] { Access::report_deep_overlap(sim, deep.bad); });
+    }
+    ++counters.steps;
+    counters.particle_steps += double(n_);
+    counters.integrated_particle_steps += double(n_);
+    counters.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  }
+
+ private:
+  Real *col(Sim &sim, std::vector<Real> &c) { return real_[real_column_.at(&c)].data(); }
+  std::uint32_t *icol(Sim &sim, std::vector<std::uint32_t> &c) { return index_[index_column_.at(&c)].data(); }
+
+  // The host copy up to date, as Simulation::sync_host would (the engine calls download itself).
+  void sim_to_host(Sim &sim) { download(sim); }
+  template <class F> [[noreturn]] void fail_on_host(Sim &sim, F &&report) {
+    sim_to_host(sim);
+    report();
+    throw RunFailure("error: the GPU run stopped at an invalid state");  // report() throws first
+  }
+
+  template <class Launch> Report run_reported(Launch &&launch, const char *what) {
+    ok(cudaMemset(report_.data(), 0, sizeof(Report)), "clearing the step report");
+    launch(report_.data());
+    ok(cudaGetLastError(), what);
+    Report r;
+    ok(cudaMemcpy(&r, report_.data(), sizeof r, cudaMemcpyDeviceToHost), what);
+    return r;
+  }
+
+  engine::KickDrift<Real> kick_view(Sim &sim, Real half, Real dt) {
+    auto &p = Access::particles(sim);
+    const auto &d = Access::domain(sim);
+    engine::KickDrift<Real> k{col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.vx), col(sim, p.vy), col(sim, p.vz),
+                              col(sim, p.fx), col(sim, p.fy), col(sim, p.fz), col(sim, p.wx), col(sim, p.wy), col(sim, p.wz),
+                              col(sim, p.tx), col(sim, p.ty), col(sim, p.tz), col(sim, p.x0), col(sim, p.y0), col(sim, p.z0),
+                              col(sim, p.inv_m), col(sim, p.inv_i), col(sim, p.mobile), half, dt, {}, {}, {}, {}, {},
+                              Access::rotating(sim), false};
+    for (int a = 0; a < 3; ++a) {
+      k.g[a] = Real(Access::settings(sim).gravity[a]);
+      k.lo[a] = Real(d.lo[a]);
+      k.hi[a] = Real(d.hi[a]);
+      k.len[a] = Real(d.length(a));
+      k.periodic[a] = d.periodic[a];
+    }
+    return k;
+  }
+
+  void launch_kick_drift(Sim &sim, Real half, Real dt, Report *out) {
+    const engine::KickDrift<Real> k = kick_view(sim, half, dt);
+    if (n_ == 0) return;
+    engine::with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate>() {
+      kick_drift_kernel<Real, PX, PY, PZ, Rotate><<<blocks_for(n_), block_size>>>(k, n_, out);
+    }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
+  }
+  void launch_kick_check(Sim &sim, Real half, Real limit2, Report *out) {
+    const engine::KickDrift<Real> k = kick_view(sim, half, Real(Access::dt(sim)));
+    if (n_ == 0) return;
+    engine::with_flags([&]<bool Rotate>() { kick_check_kernel<Real, Rotate><<<blocks_for(n_), block_size>>>(k, limit2, n_, out); },
+                       k.rotate);
+  }
+
+  ListArgs<Real> list_args(Sim &sim) {
+    auto &p = Access::particles(sim);
+    const auto &d = Access::domain(sim);
+    ListArgs<Real> a{col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.r), grid_, cell_sorted_.data(),
+                     cell_start_.data(), {}, Real(Access::skin(sim)), {}, n_};
+    for (int q = 0; q < 3; ++q) a.len[q] = Real(d.length(q)), a.per[q] = d.periodic[q];
+    return a;
+  }
+
+  void launch_deep(Sim &sim, Report *out) {
+    if (n_ == 0) return;
+    auto &p = Access::particles(sim);
+    const Real limit = Real(Access::settings(sim).overlap_limit);
+    deep_pairs_kernel<Real><<<blocks_for(n_), block_size>>>(list_args(sim), start_.data(), nbr_.data(), limit, out);
+    std::size_t s = 0;
+    for (auto &pl : Access::planes(sim)) {
+      if (pl.wall.active) deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(sim, p.r), limit, n_, out);
+      ++s;
+    }
+    for (std::size_t g = 0; g < Access::geometries(sim).size(); ++g, ++s)
+      deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(sim, p.r), limit, n_, out);
+  }
+
+  // The engine's rebuild_list, on the device: bounds, grid (the same host function), cells, a stable
+  // sort by cell, every column gathered, cell ranges, then the list counted and filled.
+  void rebuild(Sim &sim) {
+    auto &p = Access::particles(sim);
+    const auto &d = Access::domain(sim);
+    ++Access::counters(sim).list_builds;
+    Access::list_valid(sim) = true;
+    if (n_ == 0) {
+      const std::uint32_t zero = 0;
+      start_.upload(&zero, 1);
+      nbr_.resize(0);
+      hist_.resize(0);
+      return;
+    }
+    Bounds b{{~0ull, ~0ull, ~0ull}, {0, 0, 0}, 0};
+    ok(cudaMemcpy(bounds_.data(), &b, sizeof b, cudaMemcpyHostToDevice), "the bounding box");
+    bounds_kernel<Real><<<blocks_for(n_), block_size>>>(col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.r), n_,
+                                                        bounds_.data());
+    ok(cudaMemcpy(&b, bounds_.data(), sizeof b, cudaMemcpyDeviceToHost), "the bounding box");
+    double lo[3], hi[3];
+    for (int a = 0; a < 3; ++a) lo[a] = from_ordered(b.lo[a]), hi[a] = from_ordered(b.hi[a]);
+    const double reach = 2 * from_ordered(b.r_max) + Access::skin(sim);
+    for (int a = 0; a < 3; ++a)
+      if (d.periodic[a] && d.length(a) < 2 * reach)
+        throw engine::SetupError("domain: the periodic length along " + std::string(1, "xyz"[a]) +
+                                 " must be at least twice the largest diameter + skin; widen the domain or lower the skin");
+    grid_ = engine::make_cell_grid<Real>(d, lo, hi, reach, n_);
+    const std::size_t cells = grid_.count();
+
+    // a stable sort by cell: the permutation of the CPU's stable counting sort
+    cell_.resize(n_), cell_sorted_.resize(n_), perm_in_.resize(n_), perm_.resize(n_);
+    cell_kernel<Real><<<blocks_for(n_), block_size>>>(grid_, col(sim, p.x), col(sim, p.y), col(sim, p.z), n_, cell_.data(),
+                                                      perm_in_.data());
+    int bits = 1;
+    while (bits < 32 && (std::size_t(1) << bits) < cells) ++bits;
+    std::size_t temp_bytes = 0;
+    ok(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, cell_.data(), cell_sorted_.data(), perm_in_.data(), perm_.data(),
+                                       int(n_), 0, bits),
+       "sizing the sort by cell");
+    temp_.resize(temp_bytes);
+    ok(cub::DeviceRadixSort::SortPairs(temp_.data(), temp_bytes, cell_.data(), cell_sorted_.data(), perm_in_.data(),
+                                       perm_.data(), int(n_), 0, bits),
+       "sorting the particles by cell");
+    for (auto &c : real_) gather(c, 1);
+    for (auto &c : index_) gather(c, 1);
+    for (auto &s : slots_) gather(s.hist, s.hist.size() / std::max<std::size_t>(1, n_));
+
+    // cell ranges
+    counts_.resize(cells + 1);
+    ok(cudaMemset(counts_.data(), 0, (cells + 1) * sizeof(std::uint32_t)), "counting the cells");
+    count_cells_kernel<<<blocks_for(n_), block_size>>>(cell_sorted_.data(), n_, counts_.data());
+    cell_start_.resize(cells + 1);
+    exclusive_sum(counts_, cell_start_, cells + 1, "the cell ranges");
+
+    // the list: counted, summed, filled; history carried from the previous list
+    std::swap(start_, old_start_);
+    std::swap(nbr_, old_nbr_);
+    std::swap(hist_, old_hist_);
+    const ListArgs<Real> args = list_args(sim);
+    counts_.resize(std::size_t(n_) + 1);
+    ok(cudaMemset(counts_.data(), 0, (std::size_t(n_) + 1) * sizeof(std::uint32_t)), "counting the neighbours");
+    list_count_kernel<Real><<<blocks_for(n_), block_size>>>(args, counts_.data());
+    start_.resize(std::size_t(n_) + 1);
+    exclusive_sum(counts_, start_, std::size_t(n_) + 1, "the list offsets");
+    std::uint32_t entries = 0;
+    ok(cudaMemcpy(&entries, start_.data() + n_, sizeof entries, cudaMemcpyDeviceToHost), "the list length");
+    nbr_.resize(entries);
+    hist_.resize(std::size_t(entries) * history_);
+    if (hist_.size() > 0) ok(cudaMemset(hist_.data(), 0, hist_.size() * sizeof(Real)), "clearing the history");
+    if (entries > 0) list_fill_kernel<Real><<<blocks_for(n_), block_size>>>(args, start_.data(), nbr_.data());
+    const std::size_t old_n = old_start_.size() > 0 ? old_start_.size() - 1 : 0;
+    if (history_ > 0 && old_nbr_.size() > 0)
+      carry_kernel<Real><<<blocks_for(n_), block_size>>>(icol(sim, p.list_index), std::uint32_t(old_n), start_.data(),
+                                                         nbr_.data(), hist_.data(), old_start_.data(), old_nbr_.data(),
+                                                         old_hist_.data(), history_, n_);
+    after_build_kernel<Real><<<blocks_for(n_), block_size>>>(col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.x0),
+                                                             col(sim, p.y0), col(sim, p.z0), icol(sim, p.list_index), n_);
+    ok(cudaGetLastError(), "rebuilding the neighbour list");
+  }
+
+  template <class T> void gather(DeviceArray<T> &c, std::size_t stride) {
+    if (c.size() == 0 || stride == 0) return;
+    DeviceArray<T> &out = scratch_for(c);
+    out.resize(c.size());
+    gather_kernel<T><<<blocks_for(n_), block_size>>>(c.data(), out.data(), perm_.data(), n_, unsigned(stride));
+    std::swap(c, out);
+  }
+  DeviceArray<Real> &scratch_for(DeviceArray<Real> &) { return scratch_real_; }
+  DeviceArray<std::uint32_t> &scratch_for(DeviceArray<std::uint32_t> &) { return scratch_index_; }
+
+  void exclusive_sum(DeviceArray<std::uint32_t> &in, DeviceArray<std::uint32_t> &out, std::size_t n, const char *what) {
+    std::size_t temp_bytes = 0;
+    ok(cub::DeviceScan::ExclusiveSum(nullptr, temp_bytes, in.data(), out.data(), int(n)), what);
+    temp_.resize(temp_bytes);
+    ok(cub::DeviceScan::ExclusiveSum(temp_.data(), temp_bytes, in.data(), out.data(), int(n)), what);
+  }
+
+  // Every force and torque of the step: pairs, planes and geometries, in the CPU's order.
+  void forces(Sim &sim) {
+    auto &p = Access::particles(sim);
+    Access::forces_valid(sim) = true;
+    if (n_ == 0) return;
+    for (std::vector<Real> *c : {&p.fx, &p.fy, &p.fz, &p.tx, &p.ty, &p.tz})
+      ok(cudaMemset(col(sim, *c), 0, std::size_t(n_) * sizeof(Real)), "clearing the force accumulators");
+    const auto &d = Access::domain(sim);
+    Particles<Real> v{n_, col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.vx), col(sim, p.vy), col(sim, p.vz),
+                      col(sim, p.wx), col(sim, p.wy), col(sim, p.wz), col(sim, p.r), col(sim, p.m), col(sim, p.fx),
+                      col(sim, p.fy), col(sim, p.fz), col(sim, p.tx), col(sim, p.ty), col(sim, p.tz), {}, {}, {},
+                      Real(Access::dt(sim)), Real(Access::time(sim))};
+    for (int a = 0; a < 3; ++a) {
+      v.box_lo[a] = Real(d.lo[a]);
+      v.box_hi[a] = Real(d.hi[a]);
+      v.periodic[a] = d.periodic[a] ? 1 : 0;
+    }
+    const PairList<Real> list{start_.data(), nbr_.data(), hist_.data(), nullptr, nullptr, nullptr};
+    launch_pairs(laws_.pair, Access::pair_law(sim).self, v, list, device_);
+    std::size_t s = 0;
+    auto &planes = Access::planes(sim);
+    for (std::size_t k = 0; k < planes.size(); ++k, ++s) {
+      const auto &wall = planes[k].wall;
+      if (!wall.active) continue;
+      PlaneArgs<Real> pl;
+      for (int a = 0; a < 3; ++a)
+        pl.point[a] = Real(wall.point[a]), pl.normal[a] = Real(wall.normal[a]), pl.velocity[a] = Real(wall.velocity[a]);
+      const WallContacts<Real> w = slots_[s].view(n_);
+      plane_kernel<Real><<<blocks_for(n_), block_size>>>(pl, col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.r), n_, w);
+      launch_walls(laws_.planes.at(k), wall.law.self, v, w, device_);
+    }
+    auto &geometries = Access::geometries(sim);
+    for (std::size_t k = 0; k < geometries.size(); ++k, ++s) {
+      const WallContacts<Real> w = slots_[s].view(n_);
+      launch_geometry(laws_.geometries.at(k).first, geometries[k].geometry.self, v, w, device_);
+      launch_walls(laws_.geometries.at(k).second, geometries[k].geometry.law.self, v, w, device_);
+    }
+    ok(cudaGetLastError(), "the contact forces");
+  }
+
+  ResidentLaws laws_;
+  int device_;
+  std::uint32_t n_ = 0;
+  unsigned history_ = 0;
+  std::vector<DeviceArray<Real>> real_;
+  std::vector<DeviceArray<std::uint32_t>> index_;
+  std::map<const std::vector<Real> *, std::size_t> real_column_;
+  std::map<const std::vector<std::uint32_t> *, std::size_t> index_column_;
+  std::vector<DeviceSlot<Real>> slots_;  // planes, then geometries
+  DeviceArray<std::uint32_t> start_, nbr_, old_start_, old_nbr_;
+  DeviceArray<Real> hist_, old_hist_, scratch_real_;
+  DeviceArray<std::uint32_t> cell_, cell_sorted_, perm_in_, perm_, counts_, cell_start_, scratch_index_;
+  DeviceArray<unsigned char> temp_;
+  DeviceArray<Report> report_;
+  DeviceArray<Bounds> bounds_;
+  engine::CellGrid<Real> grid_;
+};
+
+}  // namespace
+
+template <class Real>
+std::unique_ptr<engine::StepBackend<Real>> make_resident_stepper(const engine::Simulation<Real> &sim, ResidentLaws laws,
+                                                                 int device) {
+  if (sim.settings().sleep)
+    throw InputError("error: scene.time.sleep: sleeping particles are not on the GPU backend yet; turn time.sleep off "
+                     "or set scene.backend: cpu");
+  if (laws.planes.size() != sim.plane_wall_count() || laws.geometries.size() != sim.geometry_count())
+    throw InputError("error: the GPU backend needs the kernels of every plane wall and geometry of the scene");
+  return std::make_unique<ResidentStepper<Real>>(std::move(laws), device);
+}
+
+template std::unique_ptr<engine::StepBackend<double>> make_resident_stepper<double>(const engine::Simulation<double> &,
+                                                                                    ResidentLaws, int);
+template std::unique_ptr<engine::StepBackend<float>> make_resident_stepper<float>(const engine::Simulation<float> &,
+                                                                                  ResidentLaws, int);
+
+}  // namespace spreadmap::cuda

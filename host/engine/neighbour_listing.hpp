@@ -1,0 +1,77 @@
+// Listing the neighbours of one particle: the body of the CPU list build and of the GPU one, so both
+// backends list the same pairs in the same order (the order each particle sums its forces in).
+#pragma once
+#include <engine/cell_grid.hpp>
+#include <spreadmap/contact.hpp>
+
+#include <cstdint>
+
+namespace spreadmap::engine {
+
+// The neighbours j of particle i among the particles of `ranges` (the cells around i's cell):
+// |x_i - x_j| < r_i + r_j + skin (minimum image along periodic axes), j != i, and, when `mobile` is
+// given, not both asleep. Returns how many there are and writes them, in increasing index, to
+// out[0, capacity): the CPU passes room for every candidate, the GPU counts first (capacity 0) and
+// then fills exactly. The test is symmetric in i and j, so the list is too.
+template <class Real>
+SM_HD std::uint32_t list_neighbours(std::uint32_t i, const Real *x, const Real *y, const Real *z, const Real *r,
+                                    const Real *mobile, const Real len[3], const bool per[3], Real skin,
+                                    const CellRanges &ranges, std::uint32_t *out, std::uint32_t capacity) {
+  const Real xi = x[i], yi = y[i], zi = z[i], ri = r[i];
+  const Real awake_i = mobile ? mobile[i] : Real(1);
+  std::uint32_t count = 0;
+  for (int q = 0; q < ranges.n; ++q)
+    for (std::uint32_t j = ranges.begin[q]; j < ranges.end[q]; ++j) {
+      const Real dx = wrap(xi - x[j], len[0], per[0]);
+      const Real dy = wrap(yi - y[j], len[1], per[1]);
+      const Real dz = wrap(zi - z[j], len[2], per[2]);
+      const Real reach = (ri + r[j]) + skin;
+      const bool listed = !mobile || awake_i > 0 || mobile[j] > 0;
+      if (count < capacity) out[count] = j;  // kept only if counted: a later neighbour overwrites it
+      count += (dx * dx + dy * dy + dz * dz < reach * reach) & (j != i) & listed ? 1u : 0u;
+    }
+  return count;
+}
+
+// How many of particle i's listed pairs with a higher index overlap by more than `limit` times the
+// smaller diameter (each pair is counted once, by its lower particle: the upper neighbours come last).
+template <class Real>
+SM_HD std::uint32_t deep_overlaps(std::uint32_t i, const Real *x, const Real *y, const Real *z, const Real *r,
+                                  const std::uint32_t *start, const std::uint32_t *nbr, const Real len[3],
+                                  const bool per[3], Real limit) {
+  std::uint32_t k = start[i], bad = 0;
+  for (std::uint32_t q = start[i]; q < start[i + 1]; ++q) k += nbr[q] < i ? 1u : 0u;
+  for (; k < start[i + 1]; ++k) {
+    const std::uint32_t j = nbr[k];
+    const Real dx = wrap(x[i] - x[j], len[0], per[0]), dy = wrap(y[i] - y[j], len[1], per[1]),
+               dz = wrap(z[i] - z[j], len[2], per[2]);
+    const Real smaller = r[i] < r[j] ? r[i] : r[j];
+    const Real allowed = (r[i] + r[j]) - 2 * limit * smaller;  // centre distance at the limit
+    bad += dx * dx + dy * dy + dz * dz < allowed * allowed ? 1u : 0u;
+  }
+  return bad;
+}
+
+// Particle i's contact history carried from the previous list: each entry (i, j) takes the values of
+// the same pair there, found through the particles' indices in the previous list (list_index,
+// no_index = 0xffffffff for a particle it did not know); new pairs keep their zeros.
+template <class Real>
+SM_HD void carry_history(std::uint32_t i, const std::uint32_t *list_index, std::uint32_t old_n,
+                         const std::uint32_t *start, const std::uint32_t *nbr, Real *hist,
+                         const std::uint32_t *old_start, const std::uint32_t *old_nbr, const Real *old_hist,
+                         unsigned history) {
+  const std::uint32_t oi = list_index[i];
+  if (oi == 0xffffffffu || oi >= old_n) return;
+  const std::uint32_t ob = old_start[oi], oe = old_start[oi + 1];
+  for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) {
+    const std::uint32_t oj = list_index[nbr[k]];
+    if (oj == 0xffffffffu) continue;
+    for (std::uint32_t ok = ob; ok < oe; ++ok) {
+      if (old_nbr[ok] != oj) continue;
+      for (unsigned h = 0; h < history; ++h) hist[std::size_t(k) * history + h] = old_hist[std::size_t(ok) * history + h];
+      break;
+    }
+  }
+}
+
+}  // namespace spreadmap::engine
