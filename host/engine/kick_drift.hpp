@@ -100,7 +100,7 @@ template <class Real> SM_HD std::uint32_t too_fast(const KickDrift<Real> &k, Rea
 }
 
 template <class Real, bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>
-void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
+SM_CPU_CLONES void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
   std::uint32_t escaped = 0, nonfinite = 0;
   Real largest = 0;
 #pragma omp simd reduction(+ : escaped, nonfinite) reduction(max : largest)
@@ -117,7 +117,7 @@ void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, 
 }
 
 template <class Real, bool Rotate, bool Sleep>
-std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
+SM_CPU_CLONES std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
   std::uint32_t bad = 0;
 #pragma omp simd reduction(+ : bad)
   for (long long i = begin; i < end; ++i) {

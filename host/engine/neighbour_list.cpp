@@ -79,13 +79,16 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
   const std::size_t n = start.size() - 1, entries = nbr.size();
   mirror.resize(entries);
   slot.resize(entries);
+  upper.resize(n);
   scratch.resize(6 * (2 * entries + 1 + n));
   std::fill_n(scratch.begin(), 6, Real(0));
+  std::fill(scratch.end() - std::ptrdiff_t(6 * n), scratch.end(), Real(0));  // the running sums start at zero
   int missing = 0;
 #pragma omp parallel for schedule(static) reduction(+ : missing)
   for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
     const auto i = static_cast<std::uint32_t>(ii);
-    for (std::uint32_t k = start[i]; k < start[i + 1] && nbr[k] < i; ++k) {
+    std::uint32_t k = start[i];
+    for (; k < start[i + 1] && nbr[k] < i; ++k) {
       const std::uint32_t j = nbr[k];
       const auto first = nbr.begin() + start[j], last = nbr.begin() + start[j + 1];
       const auto found = std::lower_bound(first, last, i);
@@ -97,6 +100,7 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
       mirror[k] = m;
       mirror[m] = k;
     }
+    upper[i] = k;
   }
   has_mirror_ = missing == 0;  // a list that is not symmetric is evaluated entry by entry
 }

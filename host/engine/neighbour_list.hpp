@@ -29,7 +29,7 @@ template <class Real> class NeighbourList {
   PairList<Real> view() {
     const bool once = has_mirror_ && !nbr.empty();
     return {start.data(), nbr.data(), hist.data(), once ? mirror.data() : nullptr, once ? scratch.data() : nullptr,
-            once ? slot.data() : nullptr};
+            once ? slot.data() : nullptr, once ? upper.data() : nullptr};
   }
   std::size_t entries() const { return nbr.size(); }
   // After start/nbr were replaced (a checkpoint): finds the mirrors again when asked.
@@ -46,8 +46,9 @@ template <class Real> class NeighbourList {
  private:
   void find_mirrors();
 
-  // Mirror entries and the pair loop's scratch (records of 6 values, record 0 all zero; slots).
-  std::vector<std::uint32_t> mirror, slot;
+  // Mirror entries, each particle's first upper entry, and the pair loop's scratch (records of 6
+  // values, record 0 all zero; slots).
+  std::vector<std::uint32_t> mirror, slot, upper;
   std::vector<Real> scratch;
   bool has_mirror_ = false;
   std::vector<std::uint32_t> old_start_, old_nbr_;

@@ -421,6 +421,41 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
   for (int t = 0; t < teams; ++t) plane.near.insert(plane.near.end(), thread_index_[t].begin(), thread_index_[t].end());
 }
 
+// A plane's law over every particle at once, its records written in place: while no particle
+// sleeps, the subset of plane_contacts would only add copies (the substrate touches a good part of
+// a heap). A particle apart from the plane gets overlap 0, which the law reads as no contact (it
+// clears any history); the others get the plane's normal and velocity. Same bits as the subset.
+template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot &plane, const Particles<Real> &view) {
+  const Real point[3] = {Real(plane.wall.point[0]), Real(plane.wall.point[1]), Real(plane.wall.point[2])};
+  const Real normal[3] = {Real(plane.wall.normal[0]), Real(plane.wall.normal[1]), Real(plane.wall.normal[2])};
+  const Real velocity[3] = {Real(plane.wall.velocity[0]), Real(plane.wall.velocity[1]), Real(plane.wall.velocity[2])};
+  WallSlot &s = plane.slot;
+  const unsigned history = s.history;
+  const long long n = static_cast<long long>(p_.size());
+  std::uint32_t touching = 0;
+#pragma omp parallel for schedule(static) reduction(+ : touching)
+  for (long long ii = 0; ii < n; ++ii) {
+    const auto i = static_cast<std::size_t>(ii);
+    const Real overlap = plane_overlap(point, normal, p_.x[i], p_.y[i], p_.z[i], p_.r[i]);
+    bool held = false;
+    for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
+    if (overlap > 0) {
+      s.overlap[i] = overlap;
+      s.nx[i] = normal[0]; s.ny[i] = normal[1]; s.nz[i] = normal[2];
+      s.vx[i] = velocity[0]; s.vy[i] = velocity[1]; s.vz[i] = velocity[2];
+      ++touching;
+    } else {
+      s.overlap[i] = 0;
+      touching += held ? 1u : 0u;
+    }
+  }
+  s.touched = touching > 0;
+  if (!s.touched) return;
+  WallContacts<Real> w = s.view(p_.size());
+  if constexpr (std::is_same_v<Real, double>) plane.wall.law.ops->walls_f64(plane.wall.law.self, &view, &w);
+  else plane.wall.law.ops->walls_f32(plane.wall.law.self, &view, &w);
+}
+
 // One wall's law over a subset of particles gathered beforehand, then the forces added back. A small
 // subset runs on this thread: a team would cost more than the work.
 template <class Real>
@@ -450,6 +485,10 @@ template <class Real> void Simulation<Real>::compute_forces() {
 
   for (auto &pl : planes_) {
     if (!pl.wall.active) continue;
+    if (asleep_ == 0) {
+      dense_plane_forces(pl, v);
+      continue;
+    }
     plane_contacts(pl);
     pl.slot.touched = !pl.near.empty();
     if (pl.near.empty()) continue;

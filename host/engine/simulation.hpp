@@ -150,6 +150,7 @@ template <class Real = double> class Simulation {
   void geometry_forces(GeometrySlot &geometry, const Particles<Real> &view);
   void compute_forces();
   void plane_contacts(PlaneSlot &plane);
+  void dense_plane_forces(PlaneSlot &plane, const Particles<Real> &view);
   void subset_forces(const ContactLaw &law, const Particles<Real> &sv, WallContacts<Real> &sw);
   // Wall subsets smaller than this are evaluated on the calling thread.
   static constexpr std::uint32_t subset_parallel_from = 512;

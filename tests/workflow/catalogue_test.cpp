@@ -8,9 +8,11 @@
 //   # expect-file: scenes/x.yaml      the file the message names, when not the workflow itself
 //   # expect-text: ...                further text of the message (any number of lines)
 //   # expect-errors: 1                exact number of "error:" messages (e.g. reported once)
-//   # with-env: NAME=VALUE            environment of the run (@FIXTURES@: the fixture plugins)
+//   # with-env: NAME=VALUE            environment of the run (@FIXTURES@: the fixture plugins;
+//                                     @ABI@ anywhere: this SDK's plugin ABI number)
 //   # with-command: run @FILE@ --out @OUT@   instead of `validate @FILE@`
 #include <gtest/gtest.h>
+#include <spreadmap/abi.h>
 
 #include <unistd.h>
 
@@ -42,7 +44,10 @@ std::string substitute(std::string s, const std::string &from, const std::string
   return s;
 }
 
-std::string fixtures(std::string s) { return substitute(std::move(s), "@FIXTURES@", SPREADMAP_FIXTURE_DIR); }
+std::string fixtures(std::string s) {
+  s = substitute(std::move(s), "@ABI@", std::to_string(SPREADMAP_PLUGIN_ABI));
+  return substitute(std::move(s), "@FIXTURES@", SPREADMAP_FIXTURE_DIR);
+}
 
 Entry read_entry(const fs::path &file) {
   Entry e;

@@ -29,7 +29,8 @@ template <class Real> struct Particles {
 // Optional (null when absent), for laws without history on the CPU (pair_once.hpp): mirror[k] is
 // the entry (j, i) of entry k = (i, j); scratch holds 6 * (2 * entries + 1 + particles) values
 // (records of 6 values, a leading all-zero one and two per entry, then 6 running sums per particle),
-// slot one value per entry; the loop overwrites both except record 0.
+// slot one value per entry; the loop overwrites both except record 0 and the running sums, which
+// must be zero on entry and are zero again on exit.
 template <class Real> struct PairList {
   const std::uint32_t *start;
   const std::uint32_t *nbr;
@@ -37,6 +38,7 @@ template <class Real> struct PairList {
   const std::uint32_t *mirror;
   Real *scratch;
   std::uint32_t *slot;
+  const std::uint32_t *upper;  // optional, with mirror: upper[i] is particle i's first entry with j > i
 };
 
 // One wall contact per particle and wall, stored densely by particle index: particle i touches the

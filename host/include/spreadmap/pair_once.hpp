@@ -110,61 +110,90 @@ template <class Real> void add_records(const Particles<Real> &p, const PairList<
   p.fx[i] += s[0]; p.fy[i] += s[1]; p.fz[i] += s[2];
   p.tx[i] += s[3]; p.ty[i] += s[4]; p.tz[i] += s[5];
 }
+
+// Minimum image along one axis, the periodicity fixed at compile time and no branch taken: the
+// same operations, hence the same bits, as wrap().
+template <bool Periodic, class Real> Real wrap_axis(Real d, Real length) {
+  if constexpr (Periodic) {
+    const Real h = Real(0.5) * length;
+    return d > h ? d - length : (d < -h ? d + length : d);
+  } else {
+    (void)length;
+    return d;
+  }
+}
+
+// One thread's sweep of pair_loop_once over its range, compiled once per combination of periodic
+// axes so that the filter of the list has no branch on them.
+template <bool PX, bool PY, bool PZ, class Law, class Real>
+SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> &list, PairSweep<Real> &sweep) {
+  const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
+  const std::uint32_t lo = sweep.lo, hi = sweep.hi;
+  std::uint32_t done = lo;  // the particles below this one got their sums (or wait for the barrier)
+  auto finish_up_to = [&](std::uint32_t end) {
+    for (; done < end; ++done) {
+      if (sweep.waits(list, done)) continue;
+      Real *s = sweep.sums + std::size_t(done) * 6;
+      p.fx[done] += s[0]; p.fy[done] += s[1]; p.fz[done] += s[2];
+      p.tx[done] += s[3]; p.ty[done] += s[4]; p.tz[done] += s[5];
+      for (int c = 0; c < 6; ++c) s[c] = 0;  // left as found: the next call starts from zero sums
+    }
+  };
+  PairBatch<Law, Real> batch;
+  int queued = 0;
+  // Slots are read only for particles that wait (those of later ranges too, and none of the first
+  // range); their touching entries are set again when evaluated, the others must read 0.
+  for (std::uint32_t i = lo; i < hi; ++i) {
+    const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i];
+    const std::uint32_t begin = list.start[i], end = list.start[i + 1];
+    // neighbours are listed by index: the upper ones follow the lower ones
+    std::uint32_t first = begin;
+    if (list.upper) first = list.upper[i];
+    else
+      for (std::uint32_t k = begin; k < end; ++k) first += list.nbr[k] < i ? 1u : 0u;
+    const bool i_waits = sweep.waits(list, i);
+    for (std::uint32_t k = first; k < end; ++k) {
+      const std::uint32_t j = list.nbr[k];
+      const Vec3<Real> d{wrap_axis<PX>(xi - p.x[j], lx), wrap_axis<PY>(yi - p.y[j], ly), wrap_axis<PZ>(zi - p.z[j], lz)};
+      const Real reach = ri + p.r[j];
+      if (i_waits) list.slot[k] = 0;
+      if (j >= hi || sweep.waits(list, j)) list.slot[list.mirror[k]] = 0;
+      batch.i[queued] = i; batch.k[queued] = k; batch.d[queued] = d;
+      queued += dot(d, d) < reach * reach ? 1 : 0;  // kept only when touching, without a branch
+      if (queued == batch.capacity) {
+        batch.flush(queued, law, p, list, sweep);
+        queued = 0;
+        finish_up_to(i);  // every pair of the particles before i is evaluated
+      }
+    }
+  }
+  batch.flush(queued, law, p, list, sweep);
+  finish_up_to(hi);
+}
 }  // namespace detail
 
 template <class Law, class Real>
 void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
   static_assert(Law::history == 0, "a law with history is evaluated for every entry");
-  const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
-  const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0;  // not reloaded per store
   const std::size_t records = 2 * std::size_t(list.start[p.n]) + 1;
+  const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0;
 #pragma omp parallel
   {
     const auto [t, nt] = team_slot();
     detail::PairSweep<Real> sweep;
     detail::entry_balanced_range(list.start, p.n, t, nt, sweep.lo, sweep.hi);
-    const std::uint32_t lo = sweep.lo, hi = sweep.hi;
-    sweep.sums = list.scratch + records * 6;
-    sweep.next = 1 + 2 * std::size_t(list.start[lo]);
-    std::fill(sweep.sums + std::size_t(lo) * 6, sweep.sums + std::size_t(hi) * 6, Real(0));
-    std::uint32_t done = lo;  // the particles below this one got their sums (or wait for the barrier)
-    auto finish_up_to = [&](std::uint32_t end) {
-      for (; done < end; ++done) {
-        if (sweep.waits(list, done)) continue;
-        const Real *s = sweep.sums + std::size_t(done) * 6;
-        p.fx[done] += s[0]; p.fy[done] += s[1]; p.fz[done] += s[2];
-        p.tx[done] += s[3]; p.ty[done] += s[4]; p.tz[done] += s[5];
-      }
-    };
-    detail::PairBatch<Law, Real> batch;
-    int queued = 0;
-    // Slots are read only for particles that wait (those of later ranges too, and none of the first
-    // range); their touching entries are set again when evaluated, the others must read 0.
-    for (std::uint32_t i = lo; i < hi; ++i) {
-      const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i];
-      const std::uint32_t begin = list.start[i], end = list.start[i + 1];
-      std::uint32_t lower = 0;  // neighbours are listed by index: the upper ones follow the lower ones
-      for (std::uint32_t k = begin; k < end; ++k) lower += list.nbr[k] < i ? 1u : 0u;
-      const bool i_waits = sweep.waits(list, i);
-      for (std::uint32_t k = begin + lower; k < end; ++k) {
-        const std::uint32_t j = list.nbr[k];
-        const Vec3<Real> d{wrap(xi - p.x[j], lx, px), wrap(yi - p.y[j], ly, py), wrap(zi - p.z[j], lz, pz)};
-        const Real reach = ri + p.r[j];
-        if (i_waits) list.slot[k] = 0;
-        if (j >= hi || sweep.waits(list, j)) list.slot[list.mirror[k]] = 0;
-        batch.i[queued] = i; batch.k[queued] = k; batch.d[queued] = d;
-        queued += dot(d, d) < reach * reach ? 1 : 0;  // kept only when touching, without a branch
-        if (queued == batch.capacity) {
-          batch.flush(queued, law, p, list, sweep);
-          queued = 0;
-          finish_up_to(i);  // every pair of the particles before i is evaluated
-        }
-      }
+    sweep.sums = list.scratch + records * 6;  // zero on entry (the list's contract), zero again on exit
+    sweep.next = 1 + 2 * std::size_t(list.start[sweep.lo]);
+    auto sweep_with = [&]<bool PX, bool PY, bool PZ>() { detail::sweep_pairs<PX, PY, PZ>(law, p, list, sweep); };
+    if (px) {
+      if (py) pz ? sweep_with.template operator()<true, true, true>() : sweep_with.template operator()<true, true, false>();
+      else pz ? sweep_with.template operator()<true, false, true>() : sweep_with.template operator()<true, false, false>();
+    } else {
+      if (py) pz ? sweep_with.template operator()<false, true, true>() : sweep_with.template operator()<false, true, false>();
+      else pz ? sweep_with.template operator()<false, false, true>() : sweep_with.template operator()<false, false, false>();
     }
-    batch.flush(queued, law, p, list, sweep);
-    finish_up_to(hi);
 #pragma omp barrier
-    for (std::uint32_t i = lo; i < hi; ++i)
+    for (std::uint32_t i = sweep.lo; i < sweep.hi; ++i)
       if (sweep.waits(list, i)) detail::add_records(p, list, i);
   }
 }
