@@ -40,6 +40,11 @@ struct Settings {
   // written with vector operations), and about twice as fast. false: every entry (for tests).
   bool pairs_once = true;
 
+  // While no particle sleeps, plane walls are evaluated over every particle in place (records
+  // written where they touch) instead of over a gathered copy of the touching ones: the same bits,
+  // no copies, and on every thread. false: always the gathered copy (for tests).
+  bool planes_in_place = true;
+
   // Scenes with fewer particles than this step on one thread: below it, starting OpenMP teams
   // (~20 per step) costs more than the work, and on a busy machine much more. Results do not
   // depend on it (the engine is deterministic for any thread count). 0: always all threads.

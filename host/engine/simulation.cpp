@@ -485,7 +485,7 @@ template <class Real> void Simulation<Real>::compute_forces() {
 
   for (auto &pl : planes_) {
     if (!pl.wall.active) continue;
-    if (asleep_ == 0) {
+    if (asleep_ == 0 && settings_.planes_in_place) {
       dense_plane_forces(pl, v);
       continue;
     }

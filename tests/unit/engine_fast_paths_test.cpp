@@ -1,6 +1,7 @@
 // The engine's fast paths give exactly the results of the plain ones: a law without history
 // evaluated once per pair (spreadmap/pair_once.hpp) against every list entry, for any number of
-// threads; a geometry evaluated for its near particles only against every particle; sleeping particles
+// threads; planes evaluated in place against a gathered copy of the touching particles; a geometry
+// evaluated for its near particles only against every particle; sleeping particles
 // (Settings::sleep): no bit changes where none may sleep, asleep means exactly still, woken by impacts.
 #include "engine_test_law.hpp"
 
@@ -139,6 +140,26 @@ TEST(EnginePairsOnce, ResumeIsBitwiseIdentical) {
   resumed->run_steps(300);
   std::filesystem::remove(path);
   EXPECT_TRUE(same_state(*whole, *resumed));
+}
+
+TEST(EnginePlanes, InPlaceGivesTheSameBitsAsTheGatheredCopyForAnyThreadCount) {
+  // The falling packing lands on the floor: many particles touch it, some leave it again.
+  Scene scene;
+  auto run = [&](bool in_place, int threads) {
+    omp_set_num_threads(threads);
+    Settings s = quiet();
+    s.planes_in_place = in_place;
+    auto sim = scene.make(s);
+    sim->run_steps(1500);
+    omp_set_num_threads(2);
+    return sim;
+  };
+  const auto gathered = run(false, 1), one = run(true, 1), two = run(true, 2);
+  std::size_t on_floor = 0;
+  for (std::size_t i = 0; i < one->size(); ++i) on_floor += one->arrays().z[i] < one->arrays().r[i] ? 1u : 0u;
+  EXPECT_GT(on_floor, 50u) << "the packing should have reached the floor";
+  EXPECT_TRUE(same_state(*gathered, *one)) << "in place and gathered differ";
+  EXPECT_TRUE(same_state(*one, *two)) << "1 vs 2 threads differ";
 }
 
 TEST(EngineGeometry, NearParticlesOnlyGiveTheSameBitsAsEveryParticle) {

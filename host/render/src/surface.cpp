@@ -144,7 +144,7 @@ void surface(const SurfaceInput& in, const std::filesystem::path& png, const Opt
   axes->SetCamera(cam);
   axes->SetXTitle("U [mm/s]");
   axes->SetYTitle((omega_symbol() + " [rad/s]").c_str());
-  axes->SetZTitle(axis_label(in.quantity.name, unit.label).c_str());
+  axes->SetZTitle("");  // drawn level above the axis below: along it, it lies over the tick labels
   axes->SetXUnits(nullptr);
   axes->SetFlyModeToOuterEdges();
   axes->XAxisMinorTickVisibilityOff();
@@ -173,6 +173,12 @@ void surface(const SurfaceInput& in, const std::filesystem::path& png, const Opt
   ren->ResetCameraClippingRange();
 
   Canvas c(ren, s);
+  // The z axis stands at the edge U = U_min, omega = omega_max (the camera is fixed to the box).
+  ren->SetWorldPoint(0, box_w, box_v, 1);
+  ren->WorldToDisplay();
+  double z_top[3];
+  ren->GetDisplayPoint(z_top);
+  c.text(axis_label(in.quantity.name, unit.label), z_top[0], z_top[1] + 34 * s, 26 * s, 1, 0);
   c.colour_bar(fig.width() - 170 * s, 0.22 * fig.height(), 32 * s, 0.5 * fig.height(), ColourMap::viridis,
                colour_lo, colour_hi, axis_label(in.quantity.name, unit.label), 22 * s);
   std::vector<LegendEntry> legend;
