@@ -105,21 +105,23 @@ struct Scene {
     sim->add_particles(random_lattice(n, 0.0005, {0, 0, 0.0006}, {0.012, 0.012, 0.045}, 0.3), 2500);
     return sim;
   }
+  // `steps` steps on `threads` threads with one switch of the settings set to `on`.
+  std::unique_ptr<Simulation<double>> run(bool Settings::*option, bool on, int threads, std::uint64_t steps) {
+    omp_set_num_threads(threads);
+    Settings s = quiet();
+    s.*option = on;
+    auto sim = make(s);
+    sim->run_steps(steps);
+    omp_set_num_threads(2);
+    return sim;
+  }
 };
 
 }  // namespace
 
 TEST(EnginePairsOnce, SameBitsAsEveryEntryForAnyThreadCount) {
   Scene scene;
-  auto run = [&](bool once, int threads) {
-    omp_set_num_threads(threads);
-    Settings s = quiet();
-    s.pairs_once = once;
-    auto sim = scene.make(s);
-    sim->run_steps(800);
-    omp_set_num_threads(2);
-    return sim;
-  };
+  auto run = [&](bool on, int threads) { return scene.run(&Settings::pairs_once, on, threads, 800); };
   const auto every = run(false, 2), one = run(true, 1), two = run(true, 2), three = run(true, 3);
   EXPECT_GT(every->counters().list_builds, 3u) << "the scene should rebuild its list several times";
   EXPECT_TRUE(same_state(*every, *one)) << "evaluating each pair once changes the result";
@@ -145,15 +147,7 @@ TEST(EnginePairsOnce, ResumeIsBitwiseIdentical) {
 TEST(EnginePlanes, InPlaceGivesTheSameBitsAsTheGatheredCopyForAnyThreadCount) {
   // The falling packing lands on the floor: many particles touch it, some leave it again.
   Scene scene;
-  auto run = [&](bool in_place, int threads) {
-    omp_set_num_threads(threads);
-    Settings s = quiet();
-    s.planes_in_place = in_place;
-    auto sim = scene.make(s);
-    sim->run_steps(1500);
-    omp_set_num_threads(2);
-    return sim;
-  };
+  auto run = [&](bool on, int threads) { return scene.run(&Settings::planes_in_place, on, threads, 1500); };
   const auto gathered = run(false, 1), one = run(true, 1), two = run(true, 2);
   std::size_t on_floor = 0;
   for (std::size_t i = 0; i < one->size(); ++i) on_floor += one->arrays().z[i] < one->arrays().r[i] ? 1u : 0u;
@@ -208,15 +202,7 @@ double top_of(const Simulation<double> &sim) {
 TEST(EngineSleep, WhereNoneMaySleepNoBitChanges) {
   // sleep on, but no region given: the same numbers as without sleeping, for any thread count
   Scene scene;
-  auto run = [&](bool sleep, int threads) {
-    omp_set_num_threads(threads);
-    Settings s = quiet();
-    s.sleep = sleep;
-    auto sim = scene.make(s);
-    sim->run_steps(800);
-    omp_set_num_threads(2);
-    return sim;
-  };
+  auto run = [&](bool on, int threads) { return scene.run(&Settings::sleep, on, threads, 800); };
   const auto plain = run(false, 2), one = run(true, 1), two = run(true, 2);
   EXPECT_TRUE(same_state(*plain, *one));
   EXPECT_TRUE(same_state(*one, *two));
