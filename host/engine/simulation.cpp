@@ -437,15 +437,15 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot &plane
   for (long long ii = 0; ii < n; ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const Real overlap = plane_overlap(point, normal, p_.x[i], p_.y[i], p_.z[i], p_.r[i]);
-    bool held = false;
-    for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
     if (overlap > 0) {
       s.overlap[i] = overlap;
       s.nx[i] = normal[0]; s.ny[i] = normal[1]; s.nz[i] = normal[2];
       s.vx[i] = velocity[0]; s.vy[i] = velocity[1]; s.vz[i] = velocity[2];
       ++touching;
-    } else {
+    } else {  // apart: the law still runs if it holds history from this plane, to clear it
       s.overlap[i] = 0;
+      bool held = false;
+      for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
       touching += held ? 1u : 0u;
     }
   }

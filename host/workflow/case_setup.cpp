@@ -33,12 +33,22 @@ CasePlugins::CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const
 engine::ContactLaw CasePlugins::law(const PluginInstance &i) const { return {i.ops<sm_contact_ops_v1>(), i.get()}; }
 
 namespace {
+// Adds a plane wall whose law is the plugin `law`, and keeps the plugin: the GPU backend needs the
+// kernels of every plane's law, in the order the walls were added.
+template <class Real>
+void add_plane(engine::Simulation<Real> &sim, std::vector<const PluginInstance *> &plane_laws, const CasePlugins &plugins,
+               const std::array<double, 3> &point, const std::array<double, 3> &normal, const PluginInstance &law,
+               const std::string &name) {
+  sim.add_plane_wall({point, normal, {0, 0, 0}, plugins.law(law), true, name});
+  plane_laws.push_back(&law);
+}
+
 // With scene.backend: cuda (or auto on a machine with a GPU), the simulation steps on the GPU: the
-// kernels of its pair law, of each plane wall's law (plane_laws, in the order the walls were added)
-// and of the spreader with its law.
+// kernels of its pair law, of each plane wall's law (plane_laws, from add_plane) and of the spreader
+// with its law.
 template <class Real>
 void attach_backend(engine::Simulation<Real> &sim, const nlohmann::json &scene, const CasePlugins &plugins,
-                    std::initializer_list<const PluginInstance *> plane_laws) {
+                    const std::vector<const PluginInstance *> &plane_laws) {
 #ifdef SPREADMAP_WITH_CUDA
   std::string message;  // said once per run by the simulate stage
   if (cuda::choose_backend(scene.value("backend", std::string("auto")), message) != cuda::Backend::cuda) return;
@@ -133,12 +143,13 @@ ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const 
   set.x = heap.x; set.y = heap.y; set.z = heap.z;
   set.radius = heap.r;
   sim.add_particles(set, powder["density"]);
-  sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, plugins.law(plugins.substrate), true, "substrate"});
-  sim.add_plane_wall({{spec.region.lo[0], 0, 0}, {1, 0, 0}, {0, 0, 0}, plugins.law(plugins.spreader_law), true, "heap back wall"});
-  sim.add_plane_wall({{spec.region.hi[0], 0, 0}, {-1, 0, 0}, {0, 0, 0}, plugins.law(plugins.spreader_law), true, "heap front wall"});
+  std::vector<const PluginInstance *> plane_laws;
+  add_plane(sim, plane_laws, plugins, {0, 0, 0}, {0, 0, 1}, plugins.substrate, "substrate");
+  add_plane(sim, plane_laws, plugins, {spec.region.lo[0], 0, 0}, {1, 0, 0}, plugins.spreader_law, "heap back wall");
+  add_plane(sim, plane_laws, plugins, {spec.region.hi[0], 0, 0}, {-1, 0, 0}, plugins.spreader_law, "heap front wall");
   sim.add_geometry({plugins.spreader.ops<sm_geometry_ops_v1>(), plugins.spreader.get(), plugins.law(plugins.spreader_law),
                     "spreader/" + scene["spreader"]["use"].get<std::string>()});
-  attach_backend(sim, scene, plugins, {&plugins.substrate, &plugins.spreader_law, &plugins.spreader_law});
+  attach_backend(sim, scene, plugins, plane_laws);
   const double t_settle = powder["settle_time"], v_rest = powder["settle_speed"];
   const double min_time = 0.3 * t_settle;
   sim.run_until(t_settle, [&](const engine::Simulation<Real> &s) {
@@ -170,10 +181,11 @@ std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &sce
   auto &sim = run->sim;
   const auto &p = run->plugins;
   sim.add_particles(heap, scene["powder"]["density"]);
-  sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, p.law(p.substrate), true, "substrate"});
+  std::vector<const PluginInstance *> plane_laws;
+  add_plane(sim, plane_laws, p, {0, 0, 0}, {0, 0, 1}, p.substrate, "substrate");
   sim.add_geometry({run->spreader_ops(), p.spreader.get(), p.law(p.spreader_law),
                     "spreader/" + scene["spreader"]["use"].get<std::string>()});
-  attach_backend(sim, scene, p, {&p.substrate});
+  attach_backend(sim, scene, p, plane_laws);
   return run;
 }
 
