@@ -199,7 +199,7 @@ template <class Real>
 __global__ void deep_pairs_kernel(ListArgs<Real> a, const std::uint32_t *start, const std::uint32_t *nbr, Real limit,
                                   Report *out) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  const unsigned bad = i < a.n ? engine::deep_overlaps(i, a.x, a.y, a.z, a.r, start, nbr, a.len, a.per, limit) : 0u;
+  const unsigned bad = i < a.n ? engine::deep_overlaps(i, a.x, a.y, a.z, a.r, start, nbr, nullptr, a.len, a.per, limit) : 0u;
   add_report(out, 0.0, 0, 0, bad);
 }
 

@@ -8,7 +8,9 @@
 #pragma once
 #include <spreadmap/hd.hpp>
 
+#include <bit>
 #include <cstdint>
+#include <type_traits>
 
 namespace spreadmap::engine {
 
@@ -101,16 +103,21 @@ template <class Real> SM_HD std::uint32_t too_fast(const KickDrift<Real> &k, Rea
 
 template <class Real, bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>
 SM_CPU_CLONES void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
+  // The largest d2 >= 0 as the largest bit pattern (the same order for non-negative floats): an
+  // integer maximum vectorises, a floating one that must keep NaN's semantics does not.
+  using Bits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
   std::uint32_t escaped = 0, nonfinite = 0;
-  Real largest = 0;
-#pragma omp simd reduction(+ : escaped, nonfinite) reduction(max : largest)
+  Bits largest_bits = 0;
+#pragma GCC ivdep
   for (long long i = begin; i < end; ++i) {
     half_kick<Real, Rotate, Sleep>(k, i);
     const Drifted<Real> d = drift<Real, PX, PY, PZ>(k, i);
     nonfinite += d.nonfinite;
     escaped += d.escaped;
-    largest = largest > d.d2 ? largest : d.d2;
+    const Bits b = std::bit_cast<Bits>(d.d2);
+    largest_bits = largest_bits > b ? largest_bits : b;
   }
+  const Real largest = std::bit_cast<Real>(largest_bits);
   result.escaped += escaped;
   result.nonfinite += nonfinite;
   result.largest = result.largest > largest ? result.largest : largest;
@@ -119,7 +126,7 @@ SM_CPU_CLONES void kick_drift_range(const KickDrift<Real> &k, long long begin, l
 template <class Real, bool Rotate, bool Sleep>
 SM_CPU_CLONES std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
   std::uint32_t bad = 0;
-#pragma omp simd reduction(+ : bad)
+#pragma GCC ivdep
   for (long long i = begin; i < end; ++i) {
     half_kick<Real, Rotate, Sleep>(k, i);
     bad += too_fast(k, limit2, i);

@@ -34,13 +34,16 @@ SM_HD std::uint32_t list_neighbours(std::uint32_t i, const Real *x, const Real *
 }
 
 // How many of particle i's listed pairs with a higher index overlap by more than `limit` times the
-// smaller diameter (each pair is counted once, by its lower particle: the upper neighbours come last).
+// smaller diameter (each pair is counted once, by its lower particle: the upper neighbours come last,
+// from upper[i] when the list keeps it, else counted).
 template <class Real>
 SM_HD std::uint32_t deep_overlaps(std::uint32_t i, const Real *x, const Real *y, const Real *z, const Real *r,
-                                  const std::uint32_t *start, const std::uint32_t *nbr, const Real len[3],
-                                  const bool per[3], Real limit) {
+                                  const std::uint32_t *start, const std::uint32_t *nbr, const std::uint32_t *upper,
+                                  const Real len[3], const bool per[3], Real limit) {
   std::uint32_t k = start[i], bad = 0;
-  for (std::uint32_t q = start[i]; q < start[i + 1]; ++q) k += nbr[q] < i ? 1u : 0u;
+  if (upper) k = upper[i];
+  else
+    for (std::uint32_t q = start[i]; q < start[i + 1]; ++q) k += nbr[q] < i ? 1u : 0u;
   for (; k < start[i + 1]; ++k) {
     const std::uint32_t j = nbr[k];
     const Real dx = wrap(x[i] - x[j], len[0], per[0]), dy = wrap(y[i] - y[j], len[1], per[1]),

@@ -696,10 +696,10 @@ template <class Real> void Simulation<Real>::check_overlaps() {
   const Real limit = Real(settings_.overlap_limit);
   std::uint32_t bad = 0;
   const Real *x = p_.x.data(), *y = p_.y.data(), *z = p_.z.data(), *r = p_.r.data();
-  const std::uint32_t *start = list_.start.data(), *nbr = list_.nbr.data();
+  const PairList<Real> l = list_.view();  // its upper entries, when the list keeps them
 #pragma omp parallel for schedule(static) reduction(+ : bad)
   for (long long ii = 0; ii < n; ++ii)
-    bad += deep_overlaps(static_cast<std::uint32_t>(ii), x, y, z, r, start, nbr, len, per, limit);
+    bad += deep_overlaps(static_cast<std::uint32_t>(ii), x, y, z, r, l.start, l.nbr, l.upper, len, per, limit);
   report_deep_overlap(bad);
 }
 

@@ -4,3 +4,6 @@ spreadmap_test(unit engine_core
 spreadmap_test(unit engine_io
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_io_test.cpp
   LIBS spreadmap_engine)
+spreadmap_test(unit engine_kick_drift
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_kick_drift_test.cpp
+  LIBS spreadmap_engine)

@@ -35,11 +35,14 @@ struct TestSlider {
     sm::ContactForce<Real> f;
     f.normal = Real(k) * c.overlap - Real(2 * zeta) * std::sqrt(Real(k) * c.m_eq) * c.v_n;
     const Real fn = f.normal < 0 ? -f.normal : f.normal;
+    // selects, no branch, as hooke_slider: the pair loop of pair_once.hpp runs it on SIMD lanes
     const Real slip = sm::norm(c.v_t);
-    if (slip > 0) f.tangent = c.v_t * (-sm::min(Real(mu) * fn, c.m_eq * Real(gamma) * slip) / slip);
+    const Real slide = -sm::min(Real(mu) * fn, c.m_eq * Real(gamma) * slip) / slip;
+    f.tangent = {slip > 0 ? c.v_t.x * slide : 0, slip > 0 ? c.v_t.y * slide : 0, slip > 0 ? c.v_t.z * slide : 0};
     const sm::Vec3<Real> roll = c.w_rel - c.normal * sm::dot(c.w_rel, c.normal);
     const Real spin = sm::norm(roll);
-    if (spin > 0) f.torque = roll * (-Real(mu_r) * c.r_eff * fn / spin);
+    const Real resist = -Real(mu_r) * c.r_eff * fn / spin;
+    f.torque = {spin > 0 ? roll.x * resist : 0, spin > 0 ? roll.y * resist : 0, spin > 0 ? roll.z * resist : 0};
     return f;
   }
 };

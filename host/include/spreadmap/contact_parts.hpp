@@ -131,22 +131,19 @@ inline Slider slider_from_name(const std::string &name) {
 
 // Tangential force of a spring-less slider with Coulomb cap `cap` = mu |F_n| [N].
 // slip_rate: gamma_t [1/s] (viscous); slip_speed_min [m/s] (coulomb).
+// Written with selects, no branch, so that a loop over contacts vectorises.
 template <class Real>
 SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real m_eq, Real dt, Real slip_rate,
                               Real slip_speed_min) {
   const Real speed = norm(v_t);
-  if (!(speed > 0) || !(cap > 0)) return {0, 0, 0};
-  Real magnitude = cap;
-  if (kind == Slider::stick) {
-    // Below the cap, the impulse F dt changes the slip by F dt / m_t = |v_t| / 2: never reverses it,
-    // and a round-off slip gets a round-off force (no spurious spin).
-    magnitude = min(cap, tangential_mass(m_eq) * speed / (Real(2) * dt));
-  } else if (kind == Slider::viscous) {
-    magnitude = min(cap, m_eq * slip_rate * speed);
-  } else if (speed <= slip_speed_min) {
-    return {0, 0, 0};
-  }
-  return v_t * (-magnitude / speed);
+  // Stick: below the cap, the impulse F dt changes the slip by F dt / m_t = |v_t| / 2: never reverses
+  // it, and a round-off slip gets a round-off force (no spurious spin).
+  // (every value computed unconditionally and then selected: a compiler may not speculate a division)
+  const Real stick = tangential_mass(m_eq) * speed / (Real(2) * dt), viscous = m_eq * slip_rate * speed;
+  const Real magnitude = min(cap, kind == Slider::stick ? stick : (kind == Slider::viscous ? viscous : cap));
+  const Real scale = -magnitude / speed;
+  const bool acts = (speed > 0) & (cap > 0) & !((kind == Slider::coulomb) & (speed <= slip_speed_min));
+  return {acts ? v_t.x * scale : Real(0), acts ? v_t.y * scale : Real(0), acts ? v_t.z * scale : Real(0)};
 }
 
 // ---------------------------------------------------------------- tangential spring (history 3)
@@ -185,13 +182,14 @@ SM_HD Vec3<Real> tangential_spring(const Vec3<Real> &normal, const Vec3<Real> &v
 template <class Real>
 SM_HD Vec3<Real> rolling_torque(Real mu_r, Real r_eff, Real fn_abs, const Vec3<Real> &normal, const Vec3<Real> &w_rel,
                                 Real m_eq, Real dt) {
-  if (!(mu_r > 0)) return {0, 0, 0};
+  if (!(mu_r > 0)) return {0, 0, 0};  // the same for every contact of a law: a loop over contacts is unswitched
   const Vec3<Real> w = w_rel - normal * dot(w_rel, normal);
   const Real speed = norm(w);
-  if (!(speed > 0)) return {0, 0, 0};
   const Real inertia = Real(0.4) * m_eq * r_eff * r_eff;
   const Real magnitude = min(mu_r * r_eff * fn_abs, inertia * speed / (Real(2) * dt));
-  return w * (-magnitude / speed);
+  const Real scale = -magnitude / speed;
+  const bool acts = speed > 0;  // selects, no branch: vectorises
+  return {acts ? w.x * scale : Real(0), acts ? w.y * scale : Real(0), acts ? w.z * scale : Real(0)};
 }
 
 // Clears a contact's history (apart, or no history).

@@ -19,8 +19,10 @@
 // (slot[k] names entry k's record, 0 an all-zero one), and it is summed in list order after a
 // barrier. Thread t's records start at 1 + 2 * (entries before its range), so runs never overlap.
 //
-// Touching pairs are queued and evaluated in short loops over up to 64 contacts (kinematics, law,
-// contributions), so that the core overlaps many contacts' sqrt/div chains.
+// Touching pairs are queued, up to 64, and evaluated in one loop over the queue (kinematics, law and
+// both contributions) that the compiler vectorises: a law without branches on the contact (selects
+// instead) runs on SIMD lanes with the same bits, as lanes do the same IEEE operations in the same
+// order. The contributions are then added one by one in queue order.
 #pragma once
 #include <spreadmap/contact.hpp>
 #include <spreadmap/team.hpp>
@@ -51,11 +53,21 @@ template <class Real> struct PairSweep {
   std::uint32_t lo, hi;
   Real *sums;       // 6 per particle, indexed by particle
   std::size_t next; // next free record
+  std::uint32_t waiting_end = 0;  // no particle from here on waits (found by find_waiting_end)
 
-  // True when particle i (of this range) has a lower neighbour in another thread's range (never in
-  // the first range).
+  // True when particle i (of this range or above) has a lower neighbour in an earlier thread's range
+  // (never in the first range).
   bool waits(const PairList<Real> &list, std::uint32_t i) const {
-    return lo > 0 && list.start[i] < list.start[i + 1] && list.nbr[list.start[i]] < lo;
+    return i < waiting_end && list.start[i] < list.start[i + 1] && list.nbr[list.start[i]] < lo;
+  }
+  // Sets waiting_end past the last particle of the range that waits: they lie near its start (the
+  // particles are sorted by cell), so that most tests of waits() end at the first comparison.
+  void find_waiting_end(const PairList<Real> &list) {
+    waiting_end = hi;  // waits() tests every particle while this runs
+    std::uint32_t end = 0;
+    if (lo > 0)
+      for (std::uint32_t i = lo; i < hi; ++i) end = waits(list, i) ? i + 1 : end;
+    waiting_end = end;
   }
   // Adds contribution (f, t) of entry k (k_of() gives it; only records need it) to particle i: to its
   // running sum when the sweep keeps its order, else as the entry's record.
@@ -73,29 +85,33 @@ template <class Real> struct PairSweep {
   }
 };
 
-// A queue of touching pairs of one thread, evaluated in stages when full or at the end.
+// A queue of touching pairs of one thread, evaluated when full or at the end.
 template <class Law, class Real> struct PairBatch {
   static constexpr int capacity = 64;
-  std::uint32_t i[capacity], k[capacity];
-  Vec3<Real> d[capacity];
-  ContactState<Real> state[capacity];
-  ContactForce<Real> force[capacity];
+  std::uint32_t i[capacity], j[capacity], k[capacity];
+  Real dx[capacity], dy[capacity], dz[capacity];
+  Real fi[6][capacity], fj[6][capacity];  // force and torque on i, then on j
 
   // Evaluates the first `size` queued pairs, in queue order, adding their contributions.
-  void flush(int size, const Law &law, const Particles<Real> &p, const PairList<Real> &list, PairSweep<Real> &sweep) {
-    for (int q = 0; q < size; ++q) state[q] = pair_contact_state(p, i[q], list.nbr[k[q]], d[q], dot(d[q], d[q]));
-    for (int q = 0; q < size; ++q) force[q] = law(state[q], static_cast<Real *>(nullptr));
+  void flush(int size, const Law &shared_law, const Particles<Real> &p, const PairList<Real> &list, PairSweep<Real> &sweep) {
+    const Law law = shared_law;  // a copy the loop's stores cannot alias: its constants are invariant
+    // ivdep, not omp simd: GCC 12 does not vectorise this loop with the lanes' private copies omp simd makes
+#pragma GCC ivdep
     for (int q = 0; q < size; ++q) {
-      const ContactState<Real> &c = state[q];
-      const ContactForce<Real> &f = force[q];
+      const Vec3<Real> d{dx[q], dy[q], dz[q]};
+      const ContactState<Real> c = pair_contact_state(p, i[q], j[q], d, dot(d, d));
+      const ContactForce<Real> f = law(c, static_cast<Real *>(nullptr));
       const ContactForce<Real> mirrored{f.normal, -f.tangent, -f.torque};  // the law's answer seen from j
-      const std::uint32_t j = list.nbr[k[q]];
-      Vec3<Real> fi{0, 0, 0}, ti{0, 0, 0}, fj{0, 0, 0}, tj{0, 0, 0};
-      accumulate(f, c.normal, p.r[i[q]], fi, ti);
-      accumulate(mirrored, -c.normal, p.r[j], fj, tj);
+      Vec3<Real> a{0, 0, 0}, ta{0, 0, 0}, b{0, 0, 0}, tb{0, 0, 0};
+      accumulate(f, c.normal, p.r[i[q]], a, ta);
+      accumulate(mirrored, -c.normal, p.r[j[q]], b, tb);
+      fi[0][q] = a.x; fi[1][q] = a.y; fi[2][q] = a.z; fi[3][q] = ta.x; fi[4][q] = ta.y; fi[5][q] = ta.z;
+      fj[0][q] = b.x; fj[1][q] = b.y; fj[2][q] = b.z; fj[3][q] = tb.x; fj[4][q] = tb.y; fj[5][q] = tb.z;
+    }
+    for (int q = 0; q < size; ++q) {
       const std::uint32_t entry = k[q];
-      sweep.add(list, i[q], [&] { return entry; }, fi, ti);
-      sweep.add(list, j, [&] { return list.mirror[entry]; }, fj, tj);
+      sweep.add(list, i[q], [&] { return entry; }, {fi[0][q], fi[1][q], fi[2][q]}, {fi[3][q], fi[4][q], fi[5][q]});
+      sweep.add(list, j[q], [&] { return list.mirror[entry]; }, {fj[0][q], fj[1][q], fj[2][q]}, {fj[3][q], fj[4][q], fj[5][q]});
     }
   }
 };
@@ -112,11 +128,11 @@ template <class Real> void add_records(const Particles<Real> &p, const PairList<
 }
 
 // Minimum image along one axis, the periodicity fixed at compile time and no branch taken: the
-// same operations, hence the same bits, as wrap().
+// same bits as wrap() (d - L, d - (-L) = d + L, or d - 0 = d, for -0 too), the shift a select.
 template <bool Periodic, class Real> Real wrap_axis(Real d, Real length) {
   if constexpr (Periodic) {
     const Real h = Real(0.5) * length;
-    return d > h ? d - length : (d < -h ? d + length : d);
+    return d - (d > h ? length : (d < -h ? -length : Real(0)));
   } else {
     (void)length;
     return d;
@@ -126,7 +142,9 @@ template <bool Periodic, class Real> Real wrap_axis(Real d, Real length) {
 // One thread's sweep of pair_loop_once over its range, compiled once per combination of periodic
 // axes so that the filter of the list has no branch on them.
 template <bool PX, bool PY, bool PZ, class Law, class Real>
-SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> &list, PairSweep<Real> &sweep) {
+SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> &list,
+                               PairSweep<Real> &shared_sweep) {
+  PairSweep<Real> sweep = shared_sweep;  // a copy the stores into the list cannot alias: kept in registers
   const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
   const std::uint32_t lo = sweep.lo, hi = sweep.hi;
   std::uint32_t done = lo;  // the particles below this one got their sums (or wait for the barrier)
@@ -158,7 +176,8 @@ SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const P
       const Real reach = ri + p.r[j];
       if (i_waits) list.slot[k] = 0;
       if (j >= hi || sweep.waits(list, j)) list.slot[list.mirror[k]] = 0;
-      batch.i[queued] = i; batch.k[queued] = k; batch.d[queued] = d;
+      batch.i[queued] = i; batch.j[queued] = j; batch.k[queued] = k;
+      batch.dx[queued] = d.x; batch.dy[queued] = d.y; batch.dz[queued] = d.z;
       queued += dot(d, d) < reach * reach ? 1 : 0;  // kept only when touching, without a branch
       if (queued == batch.capacity) {
         batch.flush(queued, law, p, list, sweep);
@@ -169,6 +188,7 @@ SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const P
   }
   batch.flush(queued, law, p, list, sweep);
   finish_up_to(hi);
+  shared_sweep = sweep;
 }
 }  // namespace detail
 
@@ -184,6 +204,7 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
     detail::entry_balanced_range(list.start, p.n, t, nt, sweep.lo, sweep.hi);
     sweep.sums = list.scratch + records * 6;  // zero on entry (the list's contract), zero again on exit
     sweep.next = 1 + 2 * std::size_t(list.start[sweep.lo]);
+    sweep.find_waiting_end(list);
     auto sweep_with = [&]<bool PX, bool PY, bool PZ>() { detail::sweep_pairs<PX, PY, PZ>(law, p, list, sweep); };
     if (px) {
       if (py) pz ? sweep_with.template operator()<true, true, true>() : sweep_with.template operator()<true, true, false>();

@@ -62,9 +62,11 @@ struct HookeSlider {
   bool makes_torque() const { return mu > 0 || mu_r > 0; }
 
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *) const {
+    // No branch on the contact (selects only; overlap <= 0 gives zeros), so that loops over contacts vectorise.
     ContactForce<Real> f;
-    if (!(c.overlap > 0)) return f;
-    f.normal = normal.force(c.m_eq, c.overlap, c.v_n);
+    const bool touching = c.overlap > 0;
+    const Real fn = normal.force(c.m_eq, c.overlap, c.v_n);
+    f.normal = touching ? fn : Real(0);
     const Real fn_abs = f.normal < 0 ? -f.normal : f.normal;
     f.tangent = slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min));
     f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
