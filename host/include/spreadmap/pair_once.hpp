@@ -165,25 +165,40 @@ SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const P
     const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i];
     const std::uint32_t begin = list.start[i], end = list.start[i + 1];
     // neighbours are listed by index: the upper ones follow the lower ones
-    std::uint32_t first = begin;
-    if (list.upper) first = list.upper[i];
+    std::uint32_t k = begin;
+    if (list.upper) k = list.upper[i];
     else
-      for (std::uint32_t k = begin; k < end; ++k) first += list.nbr[k] < i ? 1u : 0u;
+      for (std::uint32_t q = begin; q < end; ++q) k += list.nbr[q] < i ? 1u : 0u;
+    if (k == end) continue;
+    // Slots to clear: none when neither i nor any of its upper neighbours waits (the usual case,
+    // always in the first range); the loop without them is the hot one.
     const bool i_waits = sweep.waits(list, i);
-    for (std::uint32_t k = first; k < end; ++k) {
-      const std::uint32_t j = list.nbr[k];
-      const Vec3<Real> d{wrap_axis<PX>(xi - p.x[j], lx), wrap_axis<PY>(yi - p.y[j], ly), wrap_axis<PZ>(zi - p.z[j], lz)};
-      const Real reach = ri + p.r[j];
-      if (i_waits) list.slot[k] = 0;
-      if (j >= hi || sweep.waits(list, j)) list.slot[list.mirror[k]] = 0;
-      batch.i[queued] = i; batch.j[queued] = j; batch.k[queued] = k;
-      batch.dx[queued] = d.x; batch.dy[queued] = d.y; batch.dz[queued] = d.z;
-      queued += dot(d, d) < reach * reach ? 1 : 0;  // kept only when touching, without a branch
+    const bool clears = i_waits || list.nbr[end - 1] >= hi || i + 1 < sweep.waiting_end;
+    auto queue = [&]<bool Clears>(std::uint32_t from, std::uint32_t to) {
+      for (std::uint32_t q = from; q < to; ++q) {
+        const std::uint32_t j = list.nbr[q];
+        const Vec3<Real> d{wrap_axis<PX>(xi - p.x[j], lx), wrap_axis<PY>(yi - p.y[j], ly), wrap_axis<PZ>(zi - p.z[j], lz)};
+        const Real reach = ri + p.r[j];
+        if constexpr (Clears) {
+          if (i_waits) list.slot[q] = 0;
+          if (j >= hi || sweep.waits(list, j)) list.slot[list.mirror[q]] = 0;
+        }
+        batch.i[queued] = i; batch.j[queued] = j; batch.k[queued] = q;
+        batch.dx[queued] = d.x; batch.dy[queued] = d.y; batch.dz[queued] = d.z;
+        queued += dot(d, d) < reach * reach ? 1 : 0;  // kept only when touching, without a branch
+      }
+    };
+    while (k < end) {
+      // the queue takes as many of i's entries as it has room for; full, it is evaluated first
       if (queued == batch.capacity) {
         batch.flush(queued, law, p, list, sweep);
         queued = 0;
         finish_up_to(i);  // every pair of the particles before i is evaluated
       }
+      const std::uint32_t stop = min(end, k + std::uint32_t(batch.capacity - queued));
+      if (clears) queue.template operator()<true>(k, stop);
+      else queue.template operator()<false>(k, stop);
+      k = stop;
     }
   }
   batch.flush(queued, law, p, list, sweep);
