@@ -9,6 +9,8 @@
 //   double damping_ratio(double m_eq, double r_eff) const;      zeta of its dashpot at that stiffness
 //   bool makes_torque() const;                    whether any tangential force or rolling torque exists
 //   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real>&, Real *hist) const;
+// A law without history whose operator() decides per contact with selects (a ? b : c on computed
+// values) rather than branches runs on SIMD lanes in the CPU pair loop (pair_once.hpp).
 #pragma once
 #include <spreadmap/batch.hpp>
 #include <spreadmap/hd.hpp>

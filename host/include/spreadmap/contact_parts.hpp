@@ -137,8 +137,9 @@ SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real
                               Real slip_speed_min) {
   const Real speed = norm(v_t);
   // Stick: below the cap, the impulse F dt changes the slip by F dt / m_t = |v_t| / 2: never reverses
-  // it, and a round-off slip gets a round-off force (no spurious spin).
-  // (every value computed unconditionally and then selected: a compiler may not speculate a division)
+  // it, and a round-off slip gets a round-off force (no spurious spin). Every case is computed and one
+  // selected: under -ftrapping-math (a plugin built without the SDK's options) a compiler may not
+  // evaluate a division of a branch not taken.
   const Real stick = tangential_mass(m_eq) * speed / (Real(2) * dt), viscous = m_eq * slip_rate * speed;
   const Real magnitude = min(cap, kind == Slider::stick ? stick : (kind == Slider::viscous ? viscous : cap));
   const Real scale = -magnitude / speed;
@@ -182,7 +183,7 @@ SM_HD Vec3<Real> tangential_spring(const Vec3<Real> &normal, const Vec3<Real> &v
 template <class Real>
 SM_HD Vec3<Real> rolling_torque(Real mu_r, Real r_eff, Real fn_abs, const Vec3<Real> &normal, const Vec3<Real> &w_rel,
                                 Real m_eq, Real dt) {
-  if (!(mu_r > 0)) return {0, 0, 0};  // the same for every contact of a law: a loop over contacts is unswitched
+  if (!(mu_r > 0)) return {0, 0, 0};  // the same for every contact of a law: no obstacle to vectorising
   const Vec3<Real> w = w_rel - normal * dot(w_rel, normal);
   const Real speed = norm(w);
   const Real inertia = Real(0.4) * m_eq * r_eff * r_eff;

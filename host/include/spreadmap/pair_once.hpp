@@ -57,17 +57,17 @@ template <class Real> struct PairSweep {
 
   // True when particle i (of this range or above) has a lower neighbour in an earlier thread's range
   // (never in the first range).
-  bool waits(const PairList<Real> &list, std::uint32_t i) const {
-    return i < waiting_end && list.start[i] < list.start[i + 1] && list.nbr[list.start[i]] < lo;
-  }
+  bool waits(const PairList<Real> &list, std::uint32_t i) const { return i < waiting_end && below_lo(list, i); }
   // Sets waiting_end past the last particle of the range that waits: they lie near its start (the
   // particles are sorted by cell), so that most tests of waits() end at the first comparison.
   void find_waiting_end(const PairList<Real> &list) {
-    waiting_end = hi;  // waits() tests every particle while this runs
-    std::uint32_t end = 0;
+    waiting_end = 0;
     if (lo > 0)
-      for (std::uint32_t i = lo; i < hi; ++i) end = waits(list, i) ? i + 1 : end;
-    waiting_end = end;
+      for (std::uint32_t i = lo; i < hi; ++i) waiting_end = below_lo(list, i) ? i + 1 : waiting_end;
+  }
+  // Particle i's lowest neighbour lies below this range.
+  bool below_lo(const PairList<Real> &list, std::uint32_t i) const {
+    return list.start[i] < list.start[i + 1] && list.nbr[list.start[i]] < lo;
   }
   // Adds contribution (f, t) of entry k (k_of() gives it; only records need it) to particle i: to its
   // running sum when the sweep keeps its order, else as the entry's record.
