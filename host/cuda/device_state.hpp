@@ -56,7 +56,7 @@ template <class Real> class DevicePairList {
     nbr_.upload(host.nbr, entries);
     hist_.upload(host.hist, std::size_t(entries) * history);
   }
-  PairList<Real> view() const { return {start_.data(), nbr_.data(), hist_.data(), nullptr, nullptr, nullptr, nullptr}; }
+  PairList<Real> view() const { return {start_.data(), nbr_.data(), hist_.data()}; }
   void download_history(const PairList<Real> &host) const { hist_.download(host.hist); }
 
  private:

@@ -528,7 +528,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       v.box_hi[a] = Real(d.hi[a]);
       v.periodic[a] = d.periodic[a] ? 1 : 0;
     }
-    const PairList<Real> list{start_.data(), nbr_.data(), hist_.data(), nullptr, nullptr, nullptr, nullptr};
+    const PairList<Real> list{start_.data(), nbr_.data(), hist_.data()};
     launch_pairs(laws_.pair, Access::pair_law(sim).self, v, list, device_);
     std::size_t s = 0;
     auto &planes = Access::planes(sim);

@@ -27,9 +27,8 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   const int max_threads = max_team_size();
   if (static_cast<int>(thread_nbr_.size()) < max_threads) thread_nbr_.resize(max_threads);
 
-#pragma omp parallel
-  {
-    const auto [t, nt] = team_slot();
+  run_team([&](TeamSlot team) {
+    const auto [t, nt] = team;
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     auto &buf = thread_nbr_[t];
     buf.clear();
@@ -60,32 +59,30 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
       hist.assign(std::size_t(start[n]) * history, Real(0));
     }
     std::copy(buf.begin(), buf.end(), nbr.begin() + start[lo]);
-  }
+  });
 
   has_mirror_ = false;
   if (with_mirror && history == 0) find_mirrors();
   if (history == 0 || old_nbr_.empty()) return;
   // Carry history: the same (i, j) pair of particles in the previous list, found by old indices.
   const std::size_t old_n = old_start_.empty() ? 0 : old_start_.size() - 1;
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(n); ++ii)
-    carry_history(static_cast<std::uint32_t>(ii), p.list_index.data(), static_cast<std::uint32_t>(old_n), start.data(),
+  parallel_for(n, [&](long long i) {
+    carry_history(static_cast<std::uint32_t>(i), p.list_index.data(), static_cast<std::uint32_t>(old_n), start.data(),
                   nbr.data(), hist.data(), old_start_.data(), old_nbr_.data(), old_hist_.data(), history);
+  });
 }
 
 // mirror[k] for every entry: the lower entries (j < i) search i among j's neighbours (listed by
-// index) and set both directions, so each entry is written once.
+// index) and set both directions, so each entry is written once. Then the upper entries as a flat
+// sequence of pairs.
 template <class Real> void NeighbourList<Real>::find_mirrors() {
   const std::size_t n = start.size() - 1, entries = nbr.size();
   mirror.resize(entries);
-  slot.resize(entries);
   upper.resize(n);
-  scratch.resize(6 * (2 * entries + 1 + n));
-  std::fill_n(scratch.begin(), 6, Real(0));
-  std::fill(scratch.end() - std::ptrdiff_t(6 * n), scratch.end(), Real(0));  // the running sums start at zero
+  // Zero between calls of the pair loop, which leaves it so: growing keeps it all zero.
+  scratch.resize(std::max(scratch.size(), 6 * (entries + n)));
   int missing = 0;
-#pragma omp parallel for schedule(static) reduction(+ : missing)
-  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+  parallel_for(n, [&](long long ii) {
     const auto i = static_cast<std::uint32_t>(ii);
     std::uint32_t k = start[i];
     for (; k < start[i + 1] && nbr[k] < i; ++k) {
@@ -93,6 +90,7 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
       const auto first = nbr.begin() + start[j], last = nbr.begin() + start[j + 1];
       const auto found = std::lower_bound(first, last, i);
       if (found == last || *found != i) {
+#pragma omp atomic
         ++missing;
         continue;
       }
@@ -101,8 +99,21 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
       mirror[m] = k;
     }
     upper[i] = k;
-  }
+  });
   has_mirror_ = missing == 0;  // a list that is not symmetric is evaluated entry by entry
+  if (!has_mirror_) return;
+  first_pair.resize(n + 1);
+  first_pair[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) first_pair[i + 1] = first_pair[i] + (start[i + 1] - upper[i]);
+  pair_i.resize(first_pair[n]);
+  pair_j.resize(first_pair[n]);
+  parallel_for(n, [&](long long ii) {
+    const auto i = static_cast<std::uint32_t>(ii);
+    for (std::uint32_t k = upper[i], u = first_pair[i]; k < start[i + 1]; ++k, ++u) {
+      pair_i[u] = i;
+      pair_j[u] = nbr[k];
+    }
+  });
 }
 
 template class NeighbourList<double>;

@@ -28,8 +28,9 @@ template <class Real> class NeighbourList {
 
   PairList<Real> view() {
     const bool once = has_mirror_ && !nbr.empty();
-    return {start.data(), nbr.data(), hist.data(), once ? mirror.data() : nullptr, once ? scratch.data() : nullptr,
-            once ? slot.data() : nullptr, once ? upper.data() : nullptr};
+    if (!once) return {start.data(), nbr.data(), hist.data()};
+    return {start.data(),  nbr.data(),    hist.data(),    mirror.data(),    scratch.data(),
+            upper.data(),  pair_i.data(), pair_j.data(),  first_pair.data()};
   }
   std::size_t entries() const { return nbr.size(); }
   // After start/nbr were replaced (a checkpoint): finds the mirrors again when asked.
@@ -46,9 +47,9 @@ template <class Real> class NeighbourList {
  private:
   void find_mirrors();
 
-  // Mirror entries, each particle's first upper entry, and the pair loop's scratch (records of 6
-  // values, record 0 all zero; slots).
-  std::vector<std::uint32_t> mirror, slot, upper;
+  // Mirror entries, each particle's first upper entry, the upper entries as a flat sequence, and
+  // the pair loop's scratch (a record of 6 values per entry, then 6 running sums per particle).
+  std::vector<std::uint32_t> mirror, upper, pair_i, pair_j, first_pair;
   std::vector<Real> scratch;
   bool has_mirror_ = false;
   std::vector<std::uint32_t> old_start_, old_nbr_;

@@ -1,6 +1,8 @@
 // Structure-of-arrays particle state of one Simulation. Every per-particle column lives here so
 // that sorting by cell and removing particles are one gather over all of them.
 #pragma once
+#include <spreadmap/team.hpp>
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -45,11 +47,10 @@ template <class T> void gather(std::vector<T> &column, const std::vector<std::ui
   scratch.resize(n * stride);
   T *out = scratch.data();
   const T *in = column.data();
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
+  parallel_for(n, [&](long long ii) {
     const std::size_t i = static_cast<std::size_t>(ii), s = src[i];
     for (std::size_t q = 0; q < stride; ++q) out[i * stride + q] = in[s * stride + q];
-  }
+  });
   column.swap(scratch);
 }
 

@@ -28,8 +28,7 @@ template <class Real> class ParticleSubset {
     history_ = history;
     wall_hist.resize(n * history);
     const std::uint32_t *idx = index.data();
-#pragma omp parallel for schedule(static) if (n > parallel_from)
-    for (long long qq = 0; qq < static_cast<long long>(n); ++qq) {
+    parallel_for(n, [&](long long qq) {
       const auto q = static_cast<std::size_t>(qq);
       const std::uint32_t i = idx[q];
       x[q] = p.x[i]; y[q] = p.y[i]; z[q] = p.z[i];
@@ -39,7 +38,7 @@ template <class Real> class ParticleSubset {
       fx[q] = 0; fy[q] = 0; fz[q] = 0; tx[q] = 0; ty[q] = 0; tz[q] = 0;
       overlap[q] = 0;
       for (unsigned h = 0; h < history; ++h) wall_hist[q * history + h] = hist[std::size_t(i) * history + h];
-    }
+    }, n > parallel_from);
   }
 
   // The wall records of a plane: its overlap with each particle, one normal and one velocity.
@@ -73,15 +72,14 @@ template <class Real> class ParticleSubset {
   void scatter(ParticleArrays<Real> &p, std::vector<Real> &dense_overlap, std::vector<Real> &hist) const {
     const std::uint32_t *idx = index_->data();
     const unsigned history = history_;
-#pragma omp parallel for schedule(static) if (x.size() > parallel_from)
-    for (long long qq = 0; qq < static_cast<long long>(x.size()); ++qq) {
+    parallel_for(x.size(), [&](long long qq) {
       const auto q = static_cast<std::size_t>(qq);
       const std::uint32_t i = idx[q];
       p.fx[i] += fx[q]; p.fy[i] += fy[q]; p.fz[i] += fz[q];
       p.tx[i] += tx[q]; p.ty[i] += ty[q]; p.tz[i] += tz[q];
       dense_overlap[i] = overlap[q];
       for (unsigned h = 0; h < history; ++h) hist[std::size_t(i) * history + h] = wall_hist[q * history + h];
-    }
+    }, x.size() > parallel_from);
   }
 
  private:

@@ -299,13 +299,20 @@ template <class Real> void Simulation<Real>::rebuild_list() {
   double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf}, r_max = 0;
   {
     Real lx = Real(inf), ly = Real(inf), lz = Real(inf), hx = Real(-inf), hy = Real(-inf), hz = Real(-inf), rm = 0;
-#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : hx, hy, hz, rm)
-    for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
-      lx = std::min(lx, p_.x[i]); ly = std::min(ly, p_.y[i]); lz = std::min(lz, p_.z[i]);
-      hx = std::max(hx, p_.x[i]); hy = std::max(hy, p_.y[i]); hz = std::max(hz, p_.z[i]);
-      rm = std::max(rm, p_.r[i]);
-    }
+    run_team([&](TeamSlot team) {
+      Real mine[7] = {Real(inf), Real(inf), Real(inf), Real(-inf), Real(-inf), Real(-inf), 0};
+      for (std::size_t i = n * team.thread / team.threads; i < n * (team.thread + 1) / team.threads; ++i) {
+        mine[0] = std::min(mine[0], p_.x[i]); mine[1] = std::min(mine[1], p_.y[i]); mine[2] = std::min(mine[2], p_.z[i]);
+        mine[3] = std::max(mine[3], p_.x[i]); mine[4] = std::max(mine[4], p_.y[i]); mine[5] = std::max(mine[5], p_.z[i]);
+        mine[6] = std::max(mine[6], p_.r[i]);
+      }
+#pragma omp critical(spreadmap_bounds)
+      {
+        lx = std::min(lx, mine[0]); ly = std::min(ly, mine[1]); lz = std::min(lz, mine[2]);
+        hx = std::max(hx, mine[3]); hy = std::max(hy, mine[4]); hz = std::max(hz, mine[5]);
+        rm = std::max(rm, mine[6]);
+      }
+    });
     lo[0] = lx; lo[1] = ly; lo[2] = lz; hi[0] = hx; hi[1] = hy; hi[2] = hz; r_max = rm;
   }
   const double reach = 2 * r_max + skin_;
@@ -319,11 +326,7 @@ template <class Real> void Simulation<Real>::rebuild_list() {
 
   // Stable counting sort by cell.
   cell_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
-    cell_[i] = grid.cell_of(p_.x[i], p_.y[i], p_.z[i]);
-  }
+  parallel_for(n, [&](long long i) { cell_[i] = grid.cell_of(p_.x[i], p_.y[i], p_.z[i]); });
   cell_start_.assign(n_cells + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_[i] + 1];
   for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
@@ -358,12 +361,10 @@ template <class Real> void Simulation<Real>::rebuild_list() {
   if (settings_.sleep) find_border();
   asleep_at_build_ = asleep_;
   for (auto &ge : geometries_) find_near_geometry(ge);
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  parallel_for(n, [&](long long i) {
     p_.list_index[i] = static_cast<std::uint32_t>(i);
     p_.x0[i] = p_.x[i]; p_.y0[i] = p_.y[i]; p_.z0[i] = p_.z[i];
-  }
+  });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -401,9 +402,8 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
   const int max_threads = max_team_size();
   if (thread_index_.size() < std::size_t(max_threads)) thread_index_.resize(max_threads);
   int teams = 1;
-#pragma omp parallel
-  {
-    const auto [t, nt] = team_slot();
+  run_team([&](TeamSlot team) {
+    const auto [t, nt] = team;
     if (t == 0) teams = nt;
     auto &mine = thread_index_[t];
     mine.clear();
@@ -416,7 +416,7 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
       // a sleeping particle on a wall at rest stays as it is: no need to evaluate it
       if ((overlap > 0 || held) && (moving || p_.mobile[i] != 0)) mine.push_back(static_cast<std::uint32_t>(i));
     }
-  }
+  });
   plane.near.clear();
   for (int t = 0; t < teams; ++t) plane.near.insert(plane.near.end(), thread_index_[t].begin(), thread_index_[t].end());
 }
@@ -433,22 +433,25 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot &plane
   const unsigned history = s.history;
   const long long n = static_cast<long long>(p_.size());
   std::uint32_t touching = 0;
-#pragma omp parallel for schedule(static) reduction(+ : touching)
-  for (long long ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  run_team([&](TeamSlot team) {
+  std::uint32_t mine = 0;
+  for (long long i = n * team.thread / team.threads; i < n * (team.thread + 1) / team.threads; ++i) {
     const Real overlap = plane_overlap(point, normal, p_.x[i], p_.y[i], p_.z[i], p_.r[i]);
     if (overlap > 0) {
       s.overlap[i] = overlap;
       s.nx[i] = normal[0]; s.ny[i] = normal[1]; s.nz[i] = normal[2];
       s.vx[i] = velocity[0]; s.vy[i] = velocity[1]; s.vz[i] = velocity[2];
-      ++touching;
+      ++mine;
     } else {  // apart: the law still runs if it holds history from this plane, to clear it
       s.overlap[i] = 0;
       bool held = false;
       for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
-      touching += held ? 1u : 0u;
+      mine += held ? 1u : 0u;
     }
   }
+#pragma omp atomic
+  touching += mine;
+  });
   s.touched = touching > 0;
   if (!s.touched) return;
   WallContacts<Real> w = s.view(p_.size());
@@ -468,12 +471,10 @@ void Simulation<Real>::subset_forces(const ContactLaw &law, const Particles<Real
 template <class Real> void Simulation<Real>::compute_forces() {
   const std::size_t n = p_.size();
   if (!forces_zeroed_) {
-#pragma omp parallel for schedule(static)
-    for (long long ii = 0; ii < static_cast<long long>(n); ++ii) {
-      const auto i = static_cast<std::size_t>(ii);
+    parallel_for(n, [&](long long i) {
       p_.fx[i] = 0; p_.fy[i] = 0; p_.fz[i] = 0;
       p_.tx[i] = 0; p_.ty[i] = 0; p_.tz[i] = 0;
-    }
+    });
   }
   forces_zeroed_ = false;
   forces_valid_ = true;
@@ -526,8 +527,7 @@ template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot &ge
   if (n == 0 || !(skin_ > 0) || !(speed >= 0 && speed < inf)) return;
   const Real margin = Real(3 * skin_);
   inflated_radius_.resize(n);
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(n); ++ii) inflated_radius_[ii] = p_.r[ii] + margin;
+  parallel_for(n, [&](long long i) { inflated_radius_[i] = p_.r[i] + margin; });
   Particles<Real> v = view();
   v.r = inflated_radius_.data();
   WallContacts<Real> w = ge.slot.view(n);
@@ -612,15 +612,17 @@ template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real d
   const KickDrift<Real> k = integration(half_dt, dt);
   std::uint32_t escaped = 0, nonfinite = 0;
   Real largest = 0;
-#pragma omp parallel reduction(+ : escaped, nonfinite) reduction(max : largest)
-  {
-    const auto [t, nt] = team_slot();
+  run_team([&](TeamSlot team) {
+    const auto [t, nt] = team;
     KickDriftResult<Real> mine;
     kick_drift(k, n * t / nt, n * (t + 1) / nt, mine);
-    escaped += mine.escaped;
-    nonfinite += mine.nonfinite;
-    largest = largest > mine.largest ? largest : mine.largest;
-  }
+#pragma omp critical(spreadmap_kick_drift)
+    {
+      escaped += mine.escaped;
+      nonfinite += mine.nonfinite;
+      largest = largest > mine.largest ? largest : mine.largest;
+    }
+  });
   forces_zeroed_ = true;
   if (nonfinite > 0) {
     time_ += dt_;  // report the step being taken
@@ -660,11 +662,12 @@ template <class Real> void Simulation<Real>::kick_and_check(Real half_dt) {
   const KickDrift<Real> k = integration(half_dt, Real(dt_));
   const Real limit2 = Real(speed_limit_ * speed_limit_);
   std::uint32_t bad = 0;
-#pragma omp parallel reduction(+ : bad)
-  {
-    const auto [t, nt] = team_slot();
-    bad += kick_check(k, limit2, n * t / nt, n * (t + 1) / nt);
-  }
+  run_team([&](TeamSlot team) {
+    const auto [t, nt] = team;
+    const std::uint32_t mine = kick_check(k, limit2, n * t / nt, n * (t + 1) / nt);
+#pragma omp atomic
+    bad += mine;
+  });
   if (bad > 0) report_bad_particle();
 }
 
@@ -697,9 +700,13 @@ template <class Real> void Simulation<Real>::check_overlaps() {
   std::uint32_t bad = 0;
   const Real *x = p_.x.data(), *y = p_.y.data(), *z = p_.z.data(), *r = p_.r.data();
   const PairList<Real> l = list_.view();  // its upper entries, when the list keeps them
-#pragma omp parallel for schedule(static) reduction(+ : bad)
-  for (long long ii = 0; ii < n; ++ii)
-    bad += deep_overlaps(static_cast<std::uint32_t>(ii), x, y, z, r, l.start, l.nbr, l.upper, len, per, limit);
+  run_team([&](TeamSlot team) {
+    std::uint32_t mine = 0;
+    for (long long i = n * team.thread / team.threads; i < n * (team.thread + 1) / team.threads; ++i)
+      mine += deep_overlaps(static_cast<std::uint32_t>(i), x, y, z, r, l.start, l.nbr, l.upper, len, per, limit);
+#pragma omp atomic
+    bad += mine;
+  });
   report_deep_overlap(bad);
 }
 
@@ -872,18 +879,22 @@ template <class Real> void Simulation<Real>::update_sleep() {
   const std::uint32_t needed = settings_.sleep_checks;
   std::uint32_t fell = 0;
   const long long n = static_cast<long long>(p_.size());
-#pragma omp parallel for schedule(static) reduction(+ : fell)
-  for (long long ii = 0; ii < n; ++ii) {
-    const auto i = static_cast<std::uint32_t>(ii);
-    if (p_.mobile[i] == 0) continue;
-    const bool rest = p_.x[i] < x_max && !fast(i);
-    p_.calm[i] = rest ? p_.calm[i] + 1 : 0;
-    if (p_.calm[i] < needed) continue;
-    p_.mobile[i] = 0;
-    p_.vx[i] = 0; p_.vy[i] = 0; p_.vz[i] = 0;
-    p_.wx[i] = 0; p_.wy[i] = 0; p_.wz[i] = 0;
-    ++fell;
-  }
+  run_team([&](TeamSlot team) {
+    std::uint32_t mine = 0;
+    for (long long ii = n * team.thread / team.threads; ii < n * (team.thread + 1) / team.threads; ++ii) {
+      const auto i = static_cast<std::uint32_t>(ii);
+      if (p_.mobile[i] == 0) continue;
+      const bool rest = p_.x[i] < x_max && !fast(i);
+      p_.calm[i] = rest ? p_.calm[i] + 1 : 0;
+      if (p_.calm[i] < needed) continue;
+      p_.mobile[i] = 0;
+      p_.vx[i] = 0; p_.vy[i] = 0; p_.vz[i] = 0;
+      p_.wx[i] = 0; p_.wy[i] = 0; p_.wz[i] = 0;
+      ++mine;
+    }
+#pragma omp atomic
+    fell += mine;
+  });
   if (fell == 0) return;
   asleep_ += fell;
   // The pairs of two sleeping particles leave the list at its next build; until then they are

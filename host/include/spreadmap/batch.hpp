@@ -27,18 +27,19 @@ template <class Real> struct Particles {
 // fixed order, so results do not depend on the number of threads. hist holds `history` values per
 // list entry; the engine carries them across list rebuilds.
 // Optional (null when absent), for laws without history on the CPU (pair_once.hpp): mirror[k] is
-// the entry (j, i) of entry k = (i, j); scratch holds 6 * (2 * entries + 1 + particles) values
-// (records of 6 values, a leading all-zero one and two per entry, then 6 running sums per particle),
-// slot one value per entry; the loop overwrites both except record 0 and the running sums, which
-// must be zero on entry and are zero again on exit.
+// the entry (j, i) of entry k = (i, j); upper[i] is particle i's first entry with j > i. The upper
+// entries of all particles, in list order, also stand as one flat sequence: pair u is (pair_i[u],
+// pair_j[u]), and particle i's are pairs [first_pair[i], first_pair[i + 1]). scratch holds
+// 6 * (entries + particles) values: a record of 6 values per entry, then 6 running sums per
+// particle; all of it must be zero on entry, and the loop leaves it zero on exit.
 template <class Real> struct PairList {
   const std::uint32_t *start;
   const std::uint32_t *nbr;
   Real *hist;
-  const std::uint32_t *mirror;
-  Real *scratch;
-  std::uint32_t *slot;
-  const std::uint32_t *upper;  // optional, with mirror: upper[i] is particle i's first entry with j > i
+  const std::uint32_t *mirror = nullptr;
+  Real *scratch = nullptr;
+  const std::uint32_t *upper = nullptr;
+  const std::uint32_t *pair_i = nullptr, *pair_j = nullptr, *first_pair = nullptr;
 };
 
 // One wall contact per particle and wall, stored densely by particle index: particle i touches the

@@ -15,6 +15,7 @@
 #include <spreadmap/batch.hpp>
 #include <spreadmap/hd.hpp>
 #include <spreadmap/plugin.hpp>
+#include <spreadmap/team.hpp>
 
 #include <type_traits>
 
@@ -120,10 +121,9 @@ template <class Law, class Real> void pair_loop_once(const Law &law, const Parti
 template <class Law, class Real>
 void pair_loop(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
   if constexpr (Law::history == 0) {
-    if (list.mirror && list.scratch && list.slot) return pair_loop_once(law, p, list);
+    if (list.mirror && list.scratch && list.pair_i) return pair_loop_once(law, p, list);
   }
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(p.n); ++ii) pair_forces_on(law, p, list, static_cast<std::uint32_t>(ii));
+  parallel_for(p.n, [&](long long i) { pair_forces_on(law, p, list, static_cast<std::uint32_t>(i)); });
 }
 
 // The force of one wall on particle i from its dense record (nothing when not touching). The body of
@@ -156,8 +156,7 @@ SM_HD void wall_force_on(const Law &law, const Particles<Real> &p, const WallCon
 // Particle-wall loop over the dense per-particle records of one wall.
 template <class Law, class Real>
 void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w) {
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(w.n); ++ii) wall_force_on(law, p, w, static_cast<std::uint32_t>(ii));
+  parallel_for(w.n, [&](long long i) { wall_force_on(law, p, w, static_cast<std::uint32_t>(i)); });
 }
 
 namespace detail {

@@ -13,6 +13,7 @@
 #include <spreadmap/batch.hpp>
 #include <spreadmap/hd.hpp>
 #include <spreadmap/plugin.hpp>
+#include <spreadmap/team.hpp>
 
 #include <type_traits>
 
@@ -63,8 +64,7 @@ SM_HD void geometry_contact_of(const Geometry &g, const Particles<Real> &p, cons
 
 template <class Geometry, class Real>
 void geometry_loop(const Geometry &g, const Particles<Real> &p, WallContacts<Real> &w) {
-#pragma omp parallel for schedule(static)
-  for (long long ii = 0; ii < static_cast<long long>(p.n); ++ii) geometry_contact_of(g, p, w, static_cast<std::uint32_t>(ii));
+  parallel_for(p.n, [&](long long i) { geometry_contact_of(g, p, w, static_cast<std::uint32_t>(i)); });
 }
 
 namespace detail {

@@ -10,19 +10,20 @@
 // Results do not depend on the number of threads.
 //
 // How the order is kept: each thread sweeps a range [lo, hi) of particles (balanced by list
-// entries) in increasing order, testing the upper entries (j > i) of each. Particle j's list holds
-// its lower neighbours first, by increasing index, then its upper ones; the sweep meets them in that
-// very order (j's lower neighbours are rows before j; its upper entries are j's own row). So a
-// contribution is added straight to the particle's running sum (in the scratch after the records),
-// and the sum goes to the particle once the sweep has passed it. A particle with a lower neighbour
-// below lo gets contributions from another thread: its contributions are kept as records instead
-// (slot[k] names entry k's record, 0 an all-zero one), and it is summed in list order after a
-// barrier. Thread t's records start at 1 + 2 * (entries before its range), so runs never overlap.
+// entries) in increasing order, through the flat sequence of their upper entries (j > i, see
+// PairList). Particle j's list holds its lower neighbours first, by increasing index, then its upper
+// ones; the sweep meets them in that very order (j's lower neighbours are rows before j; its upper
+// entries are j's own row). So a contribution is added straight to the particle's running sum (in
+// the scratch after the records), and the sum goes to the particle once the sweep has passed it. A
+// particle with a lower neighbour below lo gets contributions from another thread: its contributions
+// are kept as records instead, one per list entry (an entry that does not touch keeps its zero
+// record), and it is summed in list order after a barrier, its records cleared again.
 //
-// Touching pairs are queued, up to 64, and evaluated in one loop over the queue (kinematics, law and
-// both contributions) that the compiler vectorises: a law without branches on the contact (selects
+// Touching pairs are queued and evaluated in one loop over the queue (kinematics, law and both
+// contributions) that the compiler vectorises: a law without branches on the contact (selects
 // instead) runs on SIMD lanes with the same bits, as lanes do the same IEEE operations in the same
-// order. The contributions are then added one by one in queue order.
+// order. The contributions are then added one by one in queue order. The filter that fills the queue
+// runs over the flat pair sequence in fixed chunks, with no exit per particle to mispredict.
 #pragma once
 #include <spreadmap/contact.hpp>
 #include <spreadmap/team.hpp>
@@ -48,11 +49,10 @@ inline void entry_balanced_range(const std::uint32_t *start, std::uint32_t n, in
   hi = cut(t + 1);
 }
 
-// One thread's share of the loop: its range, where its running sums and records live.
+// One thread's share of the loop: its range, and where its running sums live.
 template <class Real> struct PairSweep {
   std::uint32_t lo, hi;
   Real *sums;       // 6 per particle, indexed by particle
-  std::size_t next; // next free record
   std::uint32_t waiting_end = 0;  // no particle from here on waits (found by find_waiting_end)
 
   // True when particle i (of this range or above) has a lower neighbour in an earlier thread's range
@@ -73,23 +73,22 @@ template <class Real> struct PairSweep {
   // running sum when the sweep keeps its order, else as the entry's record.
   template <class EntryOf>
   void add(const PairList<Real> &list, std::uint32_t i, EntryOf k_of, const Vec3<Real> &f, const Vec3<Real> &t) {
-    Real *s;
-    if (i < hi && !waits(list, i)) {
-      s = sums + std::size_t(i) * 6;
-      s[0] += f.x; s[1] += f.y; s[2] += f.z; s[3] += t.x; s[4] += t.y; s[5] += t.z;
-      return;
-    }
-    s = list.scratch + next * 6;
-    s[0] = f.x; s[1] = f.y; s[2] = f.z; s[3] = t.x; s[4] = t.y; s[5] = t.z;
-    list.slot[k_of()] = static_cast<std::uint32_t>(next++);
+    Real *s = i < hi && !waits(list, i) ? sums + std::size_t(i) * 6 : list.scratch + std::size_t(k_of()) * 6;
+    s[0] += f.x; s[1] += f.y; s[2] += f.z; s[3] += t.x; s[4] += t.y; s[5] += t.z;  // a record: 0 + c = c
   }
 };
+
+// The entry (i, j) of particle i's list, j > i (upper entries are listed by index).
+template <class Real> std::uint32_t upper_entry(const PairList<Real> &list, std::uint32_t i, std::uint32_t j) {
+  return static_cast<std::uint32_t>(std::lower_bound(list.nbr + list.upper[i], list.nbr + list.start[i + 1], j) - list.nbr);
+}
 
 // A queue of touching pairs of one thread, evaluated when full or at the end.
 template <class Law, class Real> struct PairBatch {
   static constexpr int capacity = 64;
-  std::uint32_t i[capacity], j[capacity], k[capacity];
-  Real dx[capacity], dy[capacity], dz[capacity];
+  static constexpr int chunk = 16;  // pairs filtered between checks of the room left
+  std::uint32_t i[capacity + chunk], j[capacity + chunk];
+  Real dx[capacity + chunk], dy[capacity + chunk], dz[capacity + chunk];
   Real fi[6][capacity], fj[6][capacity];  // force and torque on i, then on j
 
   // Evaluates the first `size` queued pairs, in queue order, adding their contributions.
@@ -109,30 +108,35 @@ template <class Law, class Real> struct PairBatch {
       fj[0][q] = b.x; fj[1][q] = b.y; fj[2][q] = b.z; fj[3][q] = tb.x; fj[4][q] = tb.y; fj[5][q] = tb.z;
     }
     for (int q = 0; q < size; ++q) {
-      const std::uint32_t entry = k[q];
-      sweep.add(list, i[q], [&] { return entry; }, {fi[0][q], fi[1][q], fi[2][q]}, {fi[3][q], fi[4][q], fi[5][q]});
-      sweep.add(list, j[q], [&] { return list.mirror[entry]; }, {fj[0][q], fj[1][q], fj[2][q]}, {fj[3][q], fj[4][q], fj[5][q]});
+      const std::uint32_t pi = i[q], pj = j[q];
+      // records only: the entry, looked up (rare: particles at the border of a thread's range)
+      auto entry = [&] { return upper_entry(list, pi, pj); };
+      sweep.add(list, pi, entry, {fi[0][q], fi[1][q], fi[2][q]}, {fi[3][q], fi[4][q], fi[5][q]});
+      sweep.add(list, pj, [&] { return list.mirror[entry()]; }, {fj[0][q], fj[1][q], fj[2][q]}, {fj[3][q], fj[4][q], fj[5][q]});
     }
   }
 };
 
-// Adds particle i's records, in list order, to its accumulators.
+// Adds particle i's records, in list order, to its accumulators, and clears them for the next call.
 template <class Real> void add_records(const Particles<Real> &p, const PairList<Real> &list, std::uint32_t i) {
   Real s[6] = {0, 0, 0, 0, 0, 0};
   for (std::uint32_t k = list.start[i]; k < list.start[i + 1]; ++k) {
-    const Real *r = list.scratch + std::size_t(list.slot[k]) * 6;
-    for (int c = 0; c < 6; ++c) s[c] += r[c];
+    Real *r = list.scratch + std::size_t(k) * 6;
+    for (int c = 0; c < 6; ++c) {
+      s[c] += r[c];
+      r[c] = 0;
+    }
   }
   p.fx[i] += s[0]; p.fy[i] += s[1]; p.fz[i] += s[2];
   p.tx[i] += s[3]; p.ty[i] += s[4]; p.tz[i] += s[5];
 }
 
 // Minimum image along one axis, the periodicity fixed at compile time and no branch taken: the
-// same bits as wrap() (d - L, d - (-L) = d + L, or d - 0 = d, for -0 too), the shift a select.
+// same bits as wrap() (d - L, d - (-L) = d + L, or d - 0 - 0 = d, for -0 too), the shifts selects.
 template <bool Periodic, class Real> Real wrap_axis(Real d, Real length) {
   if constexpr (Periodic) {
     const Real h = Real(0.5) * length;
-    return d - (d > h ? length : (d < -h ? -length : Real(0)));
+    return (d - (d > h ? length : Real(0))) - (d < -h ? -length : Real(0));
   } else {
     (void)length;
     return d;
@@ -140,14 +144,15 @@ template <bool Periodic, class Real> Real wrap_axis(Real d, Real length) {
 }
 
 // One thread's sweep of pair_loop_once over its range, compiled once per combination of periodic
-// axes so that the filter of the list has no branch on them.
+// axes so that the filter has no branch on them.
 template <bool PX, bool PY, bool PZ, class Law, class Real>
 SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> &list,
                                PairSweep<Real> &shared_sweep) {
-  PairSweep<Real> sweep = shared_sweep;  // a copy the stores into the list cannot alias: kept in registers
+  PairSweep<Real> sweep = shared_sweep;  // a copy the stores into the queue cannot alias: kept in registers
   const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
-  const std::uint32_t lo = sweep.lo, hi = sweep.hi;
-  std::uint32_t done = lo;  // the particles below this one got their sums (or wait for the barrier)
+  const Real *x = p.x, *y = p.y, *z = p.z, *r = p.r;
+  const std::uint32_t *pair_i = list.pair_i, *pair_j = list.pair_j;
+  std::uint32_t done = sweep.lo;  // the particles below this one got their sums (or wait for the barrier)
   auto finish_up_to = [&](std::uint32_t end) {
     for (; done < end; ++done) {
       if (sweep.waits(list, done)) continue;
@@ -157,52 +162,30 @@ SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const P
       for (int c = 0; c < 6; ++c) s[c] = 0;  // left as found: the next call starts from zero sums
     }
   };
-  PairBatch<Law, Real> batch;
+  using Batch = PairBatch<Law, Real>;
+  Batch batch;
   int queued = 0;
-  // Slots are read only for particles that wait (those of later ranges too, and none of the first
-  // range); their touching entries are set again when evaluated, the others must read 0.
-  for (std::uint32_t i = lo; i < hi; ++i) {
-    const Real xi = p.x[i], yi = p.y[i], zi = p.z[i], ri = p.r[i];
-    const std::uint32_t begin = list.start[i], end = list.start[i + 1];
-    // neighbours are listed by index: the upper ones follow the lower ones
-    std::uint32_t k = begin;
-    if (list.upper) k = list.upper[i];
-    else
-      for (std::uint32_t q = begin; q < end; ++q) k += list.nbr[q] < i ? 1u : 0u;
-    if (k == end) continue;
-    // Slots to clear: none when neither i nor any of its upper neighbours waits (the usual case,
-    // always in the first range); the loop without them is the hot one.
-    const bool i_waits = sweep.waits(list, i);
-    const bool clears = i_waits || list.nbr[end - 1] >= hi || i + 1 < sweep.waiting_end;
-    auto queue = [&]<bool Clears>(std::uint32_t from, std::uint32_t to) {
-      for (std::uint32_t q = from; q < to; ++q) {
-        const std::uint32_t j = list.nbr[q];
-        const Vec3<Real> d{wrap_axis<PX>(xi - p.x[j], lx), wrap_axis<PY>(yi - p.y[j], ly), wrap_axis<PZ>(zi - p.z[j], lz)};
-        const Real reach = ri + p.r[j];
-        if constexpr (Clears) {
-          if (i_waits) list.slot[q] = 0;
-          if (j >= hi || sweep.waits(list, j)) list.slot[list.mirror[q]] = 0;
-        }
-        batch.i[queued] = i; batch.j[queued] = j; batch.k[queued] = q;
-        batch.dx[queued] = d.x; batch.dy[queued] = d.y; batch.dz[queued] = d.z;
-        queued += dot(d, d) < reach * reach ? 1 : 0;  // kept only when touching, without a branch
-      }
-    };
-    while (k < end) {
-      // the queue takes as many of i's entries as it has room for; full, it is evaluated first
-      if (queued == batch.capacity) {
-        batch.flush(queued, law, p, list, sweep);
-        queued = 0;
-        finish_up_to(i);  // every pair of the particles before i is evaluated
-      }
-      const std::uint32_t stop = min(end, k + std::uint32_t(batch.capacity - queued));
-      if (clears) queue.template operator()<true>(k, stop);
-      else queue.template operator()<false>(k, stop);
-      k = stop;
+  const std::uint32_t end = list.first_pair[sweep.hi];
+  for (std::uint32_t u = list.first_pair[sweep.lo]; u < end;) {
+    // a chunk of pairs, each written to the queue and kept (counted) only when touching: no branch
+    const std::uint32_t stop = min(end, u + std::uint32_t(Batch::chunk));
+    for (; u < stop; ++u) {
+      const std::uint32_t i = pair_i[u], j = pair_j[u];
+      const Real ddx = wrap_axis<PX>(x[i] - x[j], lx), ddy = wrap_axis<PY>(y[i] - y[j], ly),
+                 ddz = wrap_axis<PZ>(z[i] - z[j], lz);
+      const Real reach = r[i] + r[j];
+      batch.i[queued] = i; batch.j[queued] = j;
+      batch.dx[queued] = ddx; batch.dy[queued] = ddy; batch.dz[queued] = ddz;
+      queued += ddx * ddx + ddy * ddy + ddz * ddz < reach * reach ? 1 : 0;
+    }
+    if (queued > Batch::capacity - Batch::chunk) {
+      batch.flush(queued, law, p, list, sweep);
+      queued = 0;
+      finish_up_to(u < end ? pair_i[u] : sweep.hi);  // every pair of the particles before is evaluated
     }
   }
   batch.flush(queued, law, p, list, sweep);
-  finish_up_to(hi);
+  finish_up_to(sweep.hi);
   shared_sweep = sweep;
 }
 }  // namespace detail
@@ -210,15 +193,12 @@ SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const P
 template <class Law, class Real>
 void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
   static_assert(Law::history == 0, "a law with history is evaluated for every entry");
-  const std::size_t records = 2 * std::size_t(list.start[p.n]) + 1;
   const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0;
-#pragma omp parallel
-  {
-    const auto [t, nt] = team_slot();
+  run_team([&](TeamSlot team) {
+    const auto [t, nt] = team;
     detail::PairSweep<Real> sweep;
     detail::entry_balanced_range(list.start, p.n, t, nt, sweep.lo, sweep.hi);
-    sweep.sums = list.scratch + records * 6;  // zero on entry (the list's contract), zero again on exit
-    sweep.next = 1 + 2 * std::size_t(list.start[sweep.lo]);
+    sweep.sums = list.scratch + std::size_t(list.start[p.n]) * 6;  // after the records; zero on entry and exit
     sweep.find_waiting_end(list);
     auto sweep_with = [&]<bool PX, bool PY, bool PZ>() { detail::sweep_pairs<PX, PY, PZ>(law, p, list, sweep); };
     if (px) {
@@ -231,7 +211,7 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
 #pragma omp barrier
     for (std::uint32_t i = sweep.lo; i < sweep.hi; ++i)
       if (sweep.waits(list, i)) detail::add_records(p, list, i);
-  }
+  });
 }
 
 }  // namespace spreadmap
