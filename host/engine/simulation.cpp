@@ -97,6 +97,7 @@ template <class Real> template <class F> void Simulation<Real>::for_each_wall_sl
 template <class Real> void Simulation<Real>::resize_walls() {
   const std::size_t n = p_.size();
   for_each_wall_slot([n](WallSlot &s) { s.resize(n); });
+  for (auto &pl : planes_) pl.records_for = 0;  // the dense records are written again
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -424,37 +425,39 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
 // A plane's law over every particle at once, its records written in place: while no particle
 // sleeps, the subset of plane_contacts would only add copies (the substrate touches a good part of
 // a heap). A particle apart from the plane gets overlap 0, which the law reads as no contact (it
-// clears any history); the others get the plane's normal and velocity. Same bits as the subset.
+// clears any history). The normal and velocity records are the same for every particle: written
+// when they change, so that a step writes only the overlaps. Same bits as the subset.
 template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot &plane, const Particles<Real> &view) {
   const Real point[3] = {Real(plane.wall.point[0]), Real(plane.wall.point[1]), Real(plane.wall.point[2])};
   const Real normal[3] = {Real(plane.wall.normal[0]), Real(plane.wall.normal[1]), Real(plane.wall.normal[2])};
   const Real velocity[3] = {Real(plane.wall.velocity[0]), Real(plane.wall.velocity[1]), Real(plane.wall.velocity[2])};
   WallSlot &s = plane.slot;
+  const std::size_t n = p_.size();
+  const std::array<Real, 6> records{normal[0], normal[1], normal[2], velocity[0], velocity[1], velocity[2]};
+  if (plane.records_for != n || plane.records != records) {
+    std::vector<Real> *columns[6] = {&s.nx, &s.ny, &s.nz, &s.vx, &s.vy, &s.vz};
+    for (int c = 0; c < 6; ++c) std::fill(columns[c]->begin(), columns[c]->end(), records[c]);
+    plane.records_for = n;
+    plane.records = records;
+  }
   const unsigned history = s.history;
-  const long long n = static_cast<long long>(p_.size());
   std::uint32_t touching = 0;
   run_team([&](TeamSlot team) {
-  std::uint32_t mine = 0;
-  for (long long i = n * team.thread / team.threads; i < n * (team.thread + 1) / team.threads; ++i) {
-    const Real overlap = plane_overlap(point, normal, p_.x[i], p_.y[i], p_.z[i], p_.r[i]);
-    if (overlap > 0) {
-      s.overlap[i] = overlap;
-      s.nx[i] = normal[0]; s.ny[i] = normal[1]; s.nz[i] = normal[2];
-      s.vx[i] = velocity[0]; s.vy[i] = velocity[1]; s.vz[i] = velocity[2];
-      ++mine;
-    } else {  // apart: the law still runs if it holds history from this plane, to clear it
-      s.overlap[i] = 0;
+    const std::size_t lo = n * team.thread / team.threads, hi = n * (team.thread + 1) / team.threads;
+    std::uint32_t mine = plane_overlaps(point, normal, p_.x.data(), p_.y.data(), p_.z.data(), p_.r.data(),
+                                        s.overlap.data(), lo, hi);
+    // apart: the law still runs for a particle that holds history from this plane, to clear it
+    for (std::size_t i = lo; i < hi && history > 0; ++i) {
       bool held = false;
       for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
-      mine += held ? 1u : 0u;
+      mine += s.overlap[i] > 0 || !held ? 0u : 1u;
     }
-  }
 #pragma omp atomic
-  touching += mine;
+    touching += mine;
   });
   s.touched = touching > 0;
   if (!s.touched) return;
-  WallContacts<Real> w = s.view(p_.size());
+  WallContacts<Real> w = s.view(n);
   if constexpr (std::is_same_v<Real, double>) plane.wall.law.ops->walls_f64(plane.wall.law.self, &view, &w);
   else plane.wall.law.ops->walls_f32(plane.wall.law.self, &view, &w);
 }

@@ -22,6 +22,7 @@
 #include <engine/step_backend.hpp>
 #include <engine/walls.hpp>
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -131,6 +132,10 @@ template <class Real = double> class Simulation {
     PlaneWall wall;
     WallSlot slot;
     std::vector<std::uint32_t> near;  // the particles its law sees this step (plane_contacts)
+    // The normal and velocity its dense records hold for every particle (dense_plane_forces), and
+    // for how many particles; 0: not written.
+    std::array<Real, 6> records{};
+    std::size_t records_for = 0;
   };
   // A geometry is evaluated only for the particles near it (`near`, ascending), found by asking the
   // plugin which particles a sphere 3 skins larger would touch (see find_near_geometry).
