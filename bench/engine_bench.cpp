@@ -132,8 +132,8 @@ int main(int argc, char **argv) {
   const std::size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 20000;
   const std::uint64_t steps = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 1000;
   std::printf("bench_engine: %zu spheres of %.0f um, contact law %s, dt = %.3g s\n", n, 2e6 * radius, BENCH_LAW, dt);
-  std::printf("machine: %s, %u hardware threads (OpenMP sees %d processors)\n", cpu_model().c_str(),
-              std::thread::hardware_concurrency(), omp_get_num_procs());
+  std::printf("machine: %s, %u hardware threads (OpenMP sees %d processors); instruction set %s\n", cpu_model().c_str(),
+              std::thread::hardware_concurrency(), omp_get_num_procs(), spreadmap::simd_name(spreadmap::simd_level()));
 
   Scene scene;
   // Settle (not timed as a figure): the packing falls and collapses onto the floor.

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include <spreadmap/simd.hpp>
 #include "engine/vtp_io.hpp"
 #include "workflow/case_setup.hpp"
 #include "workflow/scene.hpp"
@@ -193,6 +194,8 @@ int main(int argc, char **argv) {
   std::printf("machine: %s, %u hardware threads (OpenMP sees %d processors); load average at start %s\n",
               first_line_of("/proc/cpuinfo", "model name").c_str(), std::thread::hardware_concurrency(),
               omp_get_num_procs(), load_average().c_str());
+  std::printf("instruction set of the engine's loops: %s (SPREADMAP_SIMD=base|avx2|avx512 chooses)\n",
+              sm::simd_name(sm::simd_level()));
   std::printf("timed: %llu spreading steps from t = %.4g s (roller x = %.2f mm), %d repeats per thread count, "
               "interleaved\n",
               static_cast<unsigned long long>(opt.steps), opt.skip * dt,

@@ -7,6 +7,7 @@
 // build. Second (after the forces): the same kick, and a count of particles too fast or not finite.
 #pragma once
 #include <spreadmap/hd.hpp>
+#include <spreadmap/simd.hpp>
 
 #include <bit>
 #include <cstdint>
@@ -102,7 +103,7 @@ template <class Real> SM_HD std::uint32_t too_fast(const KickDrift<Real> &k, Rea
 }
 
 template <class Real, bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>
-SM_CPU_CLONES void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
+void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
   // The largest d2 >= 0 as the largest bit pattern (the same order for non-negative floats): an
   // integer maximum vectorises, a floating one that must keep NaN's semantics does not.
   using Bits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
@@ -124,7 +125,7 @@ SM_CPU_CLONES void kick_drift_range(const KickDrift<Real> &k, long long begin, l
 }
 
 template <class Real, bool Rotate, bool Sleep>
-SM_CPU_CLONES std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
+std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
   std::uint32_t bad = 0;
 #pragma GCC ivdep
   for (long long i = begin; i < end; ++i) {
@@ -148,7 +149,9 @@ template <bool... Fixed, class F, class... Rest> void with_flags(F &&f, bool fir
 template <class Real>
 std::uint32_t kick_check(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
   std::uint32_t bad = 0;
-  with_flags([&]<bool Rotate, bool Sleep>() { bad = detail::kick_check_range<Real, Rotate, Sleep>(k, limit2, begin, end); },
+  with_flags([&]<bool Rotate, bool Sleep>() {
+    with_simd([&] { bad = detail::kick_check_range<Real, Rotate, Sleep>(k, limit2, begin, end); });
+  },
              k.rotate, k.sleeping);
   return bad;
 }
@@ -157,7 +160,7 @@ std::uint32_t kick_check(const KickDrift<Real> &k, Real limit2, long long begin,
 template <class Real>
 void kick_drift(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
   with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>() {
-    detail::kick_drift_range<Real, PX, PY, PZ, Rotate, Sleep>(k, begin, end, result);
+    with_simd([&] { detail::kick_drift_range<Real, PX, PY, PZ, Rotate, Sleep>(k, begin, end, result); });
   }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate, k.sleeping);
 }
 

@@ -444,8 +444,10 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot &plane
   std::uint32_t touching = 0;
   run_team([&](TeamSlot team) {
     const std::size_t lo = n * team.thread / team.threads, hi = n * (team.thread + 1) / team.threads;
-    std::uint32_t mine = plane_overlaps(point, normal, p_.x.data(), p_.y.data(), p_.z.data(), p_.r.data(),
-                                        s.overlap.data(), lo, hi);
+    std::uint32_t mine = 0;
+    with_simd([&] {
+      mine = plane_overlaps(point, normal, p_.x.data(), p_.y.data(), p_.z.data(), p_.r.data(), s.overlap.data(), lo, hi);
+    });
     // apart: the law still runs for a particle that holds history from this plane, to clear it
     for (std::size_t i = lo; i < hi && history > 0; ++i) {
       bool held = false;

@@ -38,7 +38,7 @@ SM_HD Real plane_overlap(const Real p[3], const Real n[3], Real x, Real y, Real 
 // The overlaps of particles [lo, hi) with a plane, 0 where apart, into `overlap`; returns how many
 // touch. One loop without a branch: it vectorises.
 template <class Real>
-SM_CPU_CLONES std::uint32_t plane_overlaps(const Real p[3], const Real n[3], const Real *x, const Real *y, const Real *z,
+std::uint32_t plane_overlaps(const Real p[3], const Real n[3], const Real *x, const Real *y, const Real *z,
                                            const Real *r, Real *overlap, std::size_t lo, std::size_t hi) {
   std::uint32_t touching = 0;
 #pragma GCC ivdep

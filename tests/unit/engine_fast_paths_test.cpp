@@ -1,11 +1,12 @@
 // The engine's fast paths give exactly the results of the plain ones: a law without history
 // evaluated once per pair (spreadmap/pair_once.hpp) against every list entry, for any number of
-// threads; planes evaluated in place against a gathered copy of the touching particles; a geometry
+// threads, with every instruction set the processor runs; planes evaluated in place against a gathered copy of the touching particles; a geometry
 // evaluated for its near particles only against every particle; sleeping particles
 // (Settings::sleep): no bit changes where none may sleep, asleep means exactly still, woken by impacts.
 #include "engine_test_law.hpp"
 
 #include <engine/errors.hpp>
+#include <spreadmap/simd.hpp>
 
 #include <cstring>
 #include <filesystem>
@@ -130,6 +131,24 @@ TEST(EnginePairsOnce, SameBitsAsEveryEntryForAnyThreadCount) {
   EXPECT_TRUE(same_state(*every, *one)) << "evaluating each pair once changes the result";
   EXPECT_TRUE(same_state(*one, *two)) << "1 vs 2 threads differ";
   EXPECT_TRUE(same_state(*one, *three)) << "1 vs 3 threads differ";
+}
+
+// The pair and wall queues, the kicks and the plane overlaps compiled for plain x86-64, AVX2 and
+// AVX-512 (those the processor runs): the same IEEE operations in the same order on any lane width.
+TEST(EngineSimd, EveryInstructionSetGivesTheSameBits) {
+  Scene scene;
+  const sm::SimdLevel in_use = sm::simd_level();
+  auto run = [&](sm::SimdLevel level, int threads) {
+    EXPECT_EQ(sm::set_simd_level(level), level);
+    return scene.run(&Settings::pairs_once, true, threads, 800);
+  };
+  const auto base = run(sm::SimdLevel::base, 1);
+  for (auto level : {sm::SimdLevel::avx2, sm::SimdLevel::avx512}) {
+    if (level > sm::simd_supported()) continue;  // this processor does not run it
+    for (int threads : {1, 2})
+      EXPECT_TRUE(same_state(*base, *run(level, threads))) << sm::simd_name(level) << " on " << threads << " threads";
+  }
+  sm::set_simd_level(in_use);
 }
 
 TEST(EnginePairsOnce, ResumeIsBitwiseIdentical) {

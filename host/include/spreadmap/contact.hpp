@@ -15,6 +15,7 @@
 #include <spreadmap/batch.hpp>
 #include <spreadmap/hd.hpp>
 #include <spreadmap/plugin.hpp>
+#include <spreadmap/simd.hpp>
 #include <spreadmap/team.hpp>
 
 #include <type_traits>
@@ -189,7 +190,7 @@ template <class Law, class Real> struct WallBatch {
 };
 
 template <class Law, class Real>
-SM_CPU_CLONES void wall_range(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t lo,
+void wall_range(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t lo,
                               std::uint32_t hi) {
   using Batch = WallBatch<Law, Real>;
   Batch batch;
@@ -215,8 +216,9 @@ void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real
   if constexpr (Law::history == 0) {
     run_team([&](TeamSlot team) {
       const std::uint64_t n = w.n;
-      detail::wall_range(law, p, w, static_cast<std::uint32_t>(n * team.thread / team.threads),
-                         static_cast<std::uint32_t>(n * (team.thread + 1) / team.threads));
+      const auto lo = static_cast<std::uint32_t>(n * team.thread / team.threads),
+                 hi = static_cast<std::uint32_t>(n * (team.thread + 1) / team.threads);
+      with_simd([&] { detail::wall_range(law, p, w, lo, hi); });
     });
   } else {
     parallel_for(w.n, [&](long long i) { wall_force_on(law, p, w, static_cast<std::uint32_t>(i)); });

@@ -9,16 +9,6 @@
 #define SM_HD inline
 #endif
 
-// The hottest CPU loops, compiled for any x86-64 and for AVX2 (x86-64-v3), the one the processor
-// runs chosen when the library loads. Without FMA contraction (-ffp-contract=off, set by the build
-// and the SDK) both give the same bits.
-#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__) && !defined(__CUDACC__) && \
-    !defined(__SANITIZE_ADDRESS__)
-#define SM_CPU_CLONES __attribute__((target_clones("default", "arch=x86-64-v3"), flatten))
-#else
-#define SM_CPU_CLONES
-#endif
-
 namespace spreadmap {
 
 inline constexpr double pi = 3.14159265358979323846;

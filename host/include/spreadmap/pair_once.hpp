@@ -26,6 +26,7 @@
 // runs over the flat pair sequence in fixed chunks, with no exit per particle to mispredict.
 #pragma once
 #include <spreadmap/contact.hpp>
+#include <spreadmap/simd.hpp>
 #include <spreadmap/team.hpp>
 
 #include <algorithm>
@@ -146,7 +147,7 @@ template <bool Periodic, class Real> Real wrap_axis(Real d, Real length) {
 // One thread's sweep of pair_loop_once over its range, compiled once per combination of periodic
 // axes so that the filter has no branch on them.
 template <bool PX, bool PY, bool PZ, class Law, class Real>
-SM_CPU_CLONES void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> &list,
+void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> &list,
                                PairSweep<Real> &shared_sweep) {
   PairSweep<Real> sweep = shared_sweep;  // a copy the stores into the queue cannot alias: kept in registers
   const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
@@ -200,7 +201,7 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
     detail::entry_balanced_range(list.start, p.n, t, nt, sweep.lo, sweep.hi);
     sweep.sums = list.scratch + std::size_t(list.start[p.n]) * 6;  // after the records; zero on entry and exit
     sweep.find_waiting_end(list);
-    auto sweep_with = [&]<bool PX, bool PY, bool PZ>() { detail::sweep_pairs<PX, PY, PZ>(law, p, list, sweep); };
+    auto sweep_with = [&]<bool PX, bool PY, bool PZ>() { with_simd([&] { detail::sweep_pairs<PX, PY, PZ>(law, p, list, sweep); }); };
     if (px) {
       if (py) pz ? sweep_with.template operator()<true, true, true>() : sweep_with.template operator()<true, true, false>();
       else pz ? sweep_with.template operator()<true, false, true>() : sweep_with.template operator()<true, false, false>();
