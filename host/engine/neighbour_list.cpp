@@ -20,49 +20,74 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   nbr.swap(old_nbr_);
   hist.swap(old_hist_);
   const std::size_t n = p.size();
-  start.assign(n + 1, 0);
   const Real len[3] = {Real(domain.length(0)), Real(domain.length(1)), Real(domain.length(2))};
   const bool per[3] = {domain.periodic[0], domain.periodic[1], domain.periodic[2]};
 
   const int max_threads = max_team_size();
   if (static_cast<int>(thread_nbr_.size()) < max_threads) thread_nbr_.resize(max_threads);
-
+  // The upper neighbours (j > i) of every particle: half the distance tests of a full search.
+  first_pair.assign(n + 1, 0);
+  int teams = 1;
   run_team([&](TeamSlot team) {
     const auto [t, nt] = team;
+    if (t == 0) teams = nt;
     const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
     auto &buf = thread_nbr_[t];
     buf.clear();
     CellRanges ranges;
-    std::size_t candidates = 0;
     std::uint32_t current_cell = no_index;
     for (std::size_t i = lo; i < hi; ++i) {
       if (cell[i] != current_cell) {  // particles are sorted by cell: recompute only on a new cell
         current_cell = cell[i];
         ranges = neighbour_ranges(grid, current_cell, cell_start.data());
-        candidates = 0;
-        for (int q = 0; q < ranges.n; ++q) candidates += ranges.end[q] - ranges.begin[q];
       }
+      const auto above = static_cast<std::uint32_t>(i + 1);
+      std::size_t candidates = 0;
+      for (int q = 0; q < ranges.n; ++q) candidates += ranges.end[q] > above ? ranges.end[q] - std::max(ranges.begin[q], above) : 0;
       // Room for every candidate, then written without a branch (a kept neighbour advances the end).
       const std::size_t first = buf.size();
       buf.resize(first + candidates);
       const std::uint32_t count =
           list_neighbours(static_cast<std::uint32_t>(i), p.x.data(), p.y.data(), p.z.data(), p.r.data(), mobile, len,
-                          per, skin, ranges, buf.data() + first, static_cast<std::uint32_t>(candidates));
+                          per, skin, ranges, buf.data() + first, static_cast<std::uint32_t>(candidates), above);
       buf.resize(first + count);
-      start[i + 1] = count;
+      first_pair[i + 1] = count;
     }
-#pragma omp barrier
-#pragma omp single
-    {
-      for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
-      nbr.resize(start[n]);
-      hist.assign(std::size_t(start[n]) * history, Real(0));
-    }
-    std::copy(buf.begin(), buf.end(), nbr.begin() + start[lo]);
   });
+  for (std::size_t i = 0; i < n; ++i) first_pair[i + 1] += first_pair[i];
+  const std::size_t pairs = first_pair[n];
+  pair_j.resize(pairs);
+  pair_i.resize(pairs);
+  for (int t = 0; t < teams; ++t)
+    std::copy(thread_nbr_[t].begin(), thread_nbr_[t].end(), pair_j.begin() + first_pair[n * t / teams]);
+  // The full list: particle i's lower neighbours (the pairs (j, i), met in increasing j), then its
+  // upper ones; each entry's mirror is known as it is written.
+  lower_.assign(n, 0);
+  for (std::size_t u = 0; u < pairs; ++u) ++lower_[pair_j[u]];
+  start.resize(n + 1);
+  upper.resize(n);
+  start[0] = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    upper[i] = start[i] + lower_[i];
+    start[i + 1] = upper[i] + (first_pair[i + 1] - first_pair[i]);
+    lower_[i] = start[i];  // from here on: where i's next lower neighbour goes
+  }
+  nbr.resize(start[n]);
+  mirror.resize(start[n]);
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::uint32_t u = first_pair[i], k = upper[i]; u < first_pair[i + 1]; ++u, ++k) {
+      const std::uint32_t j = pair_j[u], m = lower_[j]++;
+      pair_i[u] = static_cast<std::uint32_t>(i);
+      nbr[k] = j;
+      nbr[m] = static_cast<std::uint32_t>(i);
+      mirror[k] = m;
+      mirror[m] = k;
+    }
+  hist.assign(std::size_t(start[n]) * history, Real(0));
 
-  has_mirror_ = false;
-  if (with_mirror && history == 0) find_mirrors();
+  has_mirror_ = with_mirror && history == 0;
+  // Zero between calls of the pair loop, which leaves it so: growing keeps it all zero.
+  if (has_mirror_) scratch.resize(std::max(scratch.size(), 6 * (std::size_t(start[n]) + n)));
   if (history == 0 || old_nbr_.empty()) return;
   // Carry history: the same (i, j) pair of particles in the previous list, found by old indices.
   const std::size_t old_n = old_start_.empty() ? 0 : old_start_.size() - 1;
@@ -72,9 +97,9 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   });
 }
 
-// mirror[k] for every entry: the lower entries (j < i) search i among j's neighbours (listed by
-// index) and set both directions, so each entry is written once. Then the upper entries as a flat
-// sequence of pairs.
+// After start and nbr were replaced (a checkpoint): mirror[k] for every entry (the lower entries
+// (j < i) search i among j's neighbours, listed by index, and set both directions), then the upper
+// entries as a flat sequence of pairs.
 template <class Real> void NeighbourList<Real>::find_mirrors() {
   const std::size_t n = start.size() - 1, entries = nbr.size();
   mirror.resize(entries);

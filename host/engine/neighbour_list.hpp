@@ -52,7 +52,7 @@ template <class Real> class NeighbourList {
   std::vector<std::uint32_t> mirror, upper, pair_i, pair_j, first_pair;
   std::vector<Real> scratch;
   bool has_mirror_ = false;
-  std::vector<std::uint32_t> old_start_, old_nbr_;
+  std::vector<std::uint32_t> old_start_, old_nbr_, lower_;
   std::vector<Real> old_hist_;
   std::vector<std::vector<std::uint32_t>> thread_nbr_;
 };

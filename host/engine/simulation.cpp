@@ -707,8 +707,16 @@ template <class Real> void Simulation<Real>::check_overlaps() {
   const PairList<Real> l = list_.view();  // its upper entries, when the list keeps them
   run_team([&](TeamSlot team) {
     std::uint32_t mine = 0;
-    for (long long i = n * team.thread / team.threads; i < n * (team.thread + 1) / team.threads; ++i)
-      mine += deep_overlaps(static_cast<std::uint32_t>(i), x, y, z, r, l.start, l.nbr, l.upper, len, per, limit);
+    if (l.pair_i) {  // the flat sequence of upper pairs: one loop, vectorised
+      const std::uint64_t pairs = l.first_pair[n];
+      const std::uint64_t lo = pairs * team.thread / team.threads, hi = pairs * (team.thread + 1) / team.threads;
+      with_flags([&]<bool PX, bool PY, bool PZ>() {
+        with_simd([&] { mine = deep_overlap_pairs<PX, PY, PZ>(l.pair_i, l.pair_j, lo, hi, x, y, z, r, len, limit); });
+      }, per[0], per[1], per[2]);
+    } else {
+      for (long long i = n * team.thread / team.threads; i < n * (team.thread + 1) / team.threads; ++i)
+        mine += deep_overlaps(static_cast<std::uint32_t>(i), x, y, z, r, l.start, l.nbr, l.upper, len, per, limit);
+    }
 #pragma omp atomic
     bad += mine;
   });
