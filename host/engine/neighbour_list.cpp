@@ -29,10 +29,9 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   first_pair.assign(n + 1, 0);
   int teams = 1;
   run_team([&](TeamSlot team) {
-    const auto [t, nt] = team;
-    if (t == 0) teams = nt;
-    const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
-    auto &buf = thread_nbr_[t];
+    if (team.thread == 0) teams = team.threads;
+    const auto [lo, hi] = team_share(n, team);
+    auto &buf = thread_nbr_[team.thread];
     buf.clear();
     CellRanges ranges;
     std::uint32_t current_cell = no_index;
@@ -59,7 +58,7 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   pair_j.resize(pairs);
   pair_i.resize(pairs);
   for (int t = 0; t < teams; ++t)
-    std::copy(thread_nbr_[t].begin(), thread_nbr_[t].end(), pair_j.begin() + first_pair[n * t / teams]);
+    std::copy(thread_nbr_[t].begin(), thread_nbr_[t].end(), pair_j.begin() + first_pair[team_share(n, {t, teams}).lo]);
   // The full list: particle i's lower neighbours (the pairs (j, i), met in increasing j), then its
   // upper ones; each entry's mirror is known as it is written.
   lower_.assign(n, 0);

@@ -302,7 +302,8 @@ template <class Real> void Simulation<Real>::rebuild_list() {
     Real lx = Real(inf), ly = Real(inf), lz = Real(inf), hx = Real(-inf), hy = Real(-inf), hz = Real(-inf), rm = 0;
     run_team([&](TeamSlot team) {
       Real mine[7] = {Real(inf), Real(inf), Real(inf), Real(-inf), Real(-inf), Real(-inf), 0};
-      for (std::size_t i = n * team.thread / team.threads; i < n * (team.thread + 1) / team.threads; ++i) {
+      const auto [lo, hi] = team_share(n, team);
+      for (std::size_t i = lo; i < hi; ++i) {
         mine[0] = std::min(mine[0], p_.x[i]); mine[1] = std::min(mine[1], p_.y[i]); mine[2] = std::min(mine[2], p_.z[i]);
         mine[3] = std::max(mine[3], p_.x[i]); mine[4] = std::max(mine[4], p_.y[i]); mine[5] = std::max(mine[5], p_.z[i]);
         mine[6] = std::max(mine[6], p_.r[i]);
@@ -404,11 +405,10 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
   if (thread_index_.size() < std::size_t(max_threads)) thread_index_.resize(max_threads);
   int teams = 1;
   run_team([&](TeamSlot team) {
-    const auto [t, nt] = team;
-    if (t == 0) teams = nt;
-    auto &mine = thread_index_[t];
+    if (team.thread == 0) teams = team.threads;
+    auto &mine = thread_index_[team.thread];
     mine.clear();
-    const std::size_t lo = n * t / nt, hi = n * (t + 1) / nt;
+    const auto [lo, hi] = team_share(n, team);
     for (std::size_t i = lo; i < hi; ++i) {
       const Real overlap = plane_overlap(point, normal, p_.x[i], p_.y[i], p_.z[i], p_.r[i]);
       s.overlap[i] = overlap > 0 ? overlap : Real(0);
@@ -443,7 +443,7 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot &plane
   const unsigned history = s.history;
   std::uint32_t touching = 0;
   run_team([&](TeamSlot team) {
-    const std::size_t lo = n * team.thread / team.threads, hi = n * (team.thread + 1) / team.threads;
+    const auto [lo, hi] = team_share(n, team);
     std::uint32_t mine = 0;
     with_simd([&] {
       mine = plane_overlaps(point, normal, p_.x.data(), p_.y.data(), p_.z.data(), p_.r.data(), s.overlap.data(), lo, hi);
@@ -613,14 +613,14 @@ template <class Real> KickDrift<Real> Simulation<Real>::integration(Real half_dt
 // particles outside open axes and the non-finite ones; returns true when the list must be rebuilt:
 // some particle moved by half the skin since the last build (LAMMPS' and LIGGGHTS' criterion).
 template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real dt) {
-  const long long n = static_cast<long long>(p_.size());
+  const std::size_t n = p_.size();
   const KickDrift<Real> k = integration(half_dt, dt);
   std::uint32_t escaped = 0, nonfinite = 0;
   Real largest = 0;
   run_team([&](TeamSlot team) {
-    const auto [t, nt] = team;
     KickDriftResult<Real> mine;
-    kick_drift(k, n * t / nt, n * (t + 1) / nt, mine);
+    const auto [lo, hi] = team_share(n, team);
+    kick_drift(k, lo, hi, mine);
 #pragma omp critical(spreadmap_kick_drift)
     {
       escaped += mine.escaped;
@@ -663,13 +663,13 @@ template <class Real> void Simulation<Real>::remove_escaped() {
 
 // Second half kick fused with the per-step sanity check (NaN, speed limit).
 template <class Real> void Simulation<Real>::kick_and_check(Real half_dt) {
-  const long long n = static_cast<long long>(p_.size());
+  const std::size_t n = p_.size();
   const KickDrift<Real> k = integration(half_dt, Real(dt_));
   const Real limit2 = Real(speed_limit_ * speed_limit_);
   std::uint32_t bad = 0;
   run_team([&](TeamSlot team) {
-    const auto [t, nt] = team;
-    const std::uint32_t mine = kick_check(k, limit2, n * t / nt, n * (t + 1) / nt);
+    const auto [lo, hi] = team_share(n, team);
+    const std::uint32_t mine = kick_check(k, limit2, lo, hi);
 #pragma omp atomic
     bad += mine;
   });
@@ -698,7 +698,7 @@ template <class Real> void Simulation<Real>::report_bad_particle() const {
 }
 
 template <class Real> void Simulation<Real>::check_overlaps() {
-  const long long n = static_cast<long long>(p_.size());
+  const std::size_t n = p_.size();
   const Real len[3] = {Real(domain_.length(0)), Real(domain_.length(1)), Real(domain_.length(2))};
   const bool per[3] = {domain_.periodic[0], domain_.periodic[1], domain_.periodic[2]};
   const Real limit = Real(settings_.overlap_limit);
@@ -709,12 +709,13 @@ template <class Real> void Simulation<Real>::check_overlaps() {
     std::uint32_t mine = 0;
     if (l.pair_i) {  // the flat sequence of upper pairs: one loop, vectorised
       const std::uint64_t pairs = l.first_pair[n];
-      const std::uint64_t lo = pairs * team.thread / team.threads, hi = pairs * (team.thread + 1) / team.threads;
+      const auto [lo, hi] = team_share(pairs, team);
       with_flags([&]<bool PX, bool PY, bool PZ>() {
         with_simd([&] { mine = deep_overlap_pairs<PX, PY, PZ>(l.pair_i, l.pair_j, lo, hi, x, y, z, r, len, limit); });
       }, per[0], per[1], per[2]);
     } else {
-      for (long long i = n * team.thread / team.threads; i < n * (team.thread + 1) / team.threads; ++i)
+      const auto [lo, hi] = team_share(n, team);
+      for (std::size_t i = lo; i < hi; ++i)
         mine += deep_overlaps(static_cast<std::uint32_t>(i), x, y, z, r, l.start, l.nbr, l.upper, len, per, limit);
     }
 #pragma omp atomic
@@ -891,10 +892,11 @@ template <class Real> void Simulation<Real>::update_sleep() {
   const Real x_max = Real(sleep_x_max_);
   const std::uint32_t needed = settings_.sleep_checks;
   std::uint32_t fell = 0;
-  const long long n = static_cast<long long>(p_.size());
+  const std::size_t n = p_.size();
   run_team([&](TeamSlot team) {
     std::uint32_t mine = 0;
-    for (long long ii = n * team.thread / team.threads; ii < n * (team.thread + 1) / team.threads; ++ii) {
+    const auto [lo, hi] = team_share(n, team);
+    for (std::size_t ii = lo; ii < hi; ++ii) {
       const auto i = static_cast<std::uint32_t>(ii);
       if (p_.mobile[i] == 0) continue;
       const bool rest = p_.x[i] < x_max && !fast(i);

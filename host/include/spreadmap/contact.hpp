@@ -215,10 +215,8 @@ template <class Law, class Real>
 void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w) {
   if constexpr (Law::history == 0) {
     run_team([&](TeamSlot team) {
-      const std::uint64_t n = w.n;
-      const auto lo = static_cast<std::uint32_t>(n * team.thread / team.threads),
-                 hi = static_cast<std::uint32_t>(n * (team.thread + 1) / team.threads);
-      with_simd([&] { detail::wall_range(law, p, w, lo, hi); });
+      const TeamRange r = team_share(w.n, team);
+      with_simd([&] { detail::wall_range(law, p, w, static_cast<std::uint32_t>(r.lo), static_cast<std::uint32_t>(r.hi)); });
     });
   } else {
     parallel_for(w.n, [&](long long i) { wall_force_on(law, p, w, static_cast<std::uint32_t>(i)); });

@@ -2,6 +2,7 @@
 // one thread of one when built without OpenMP. Loops split work by these so that each thread owns a
 // fixed range, which keeps results independent of scheduling.
 #pragma once
+#include <cstddef>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -26,6 +27,15 @@ inline int max_team_size() {
 #else
   return 1;
 #endif
+}
+
+// Thread `team`'s share [lo, hi) of n items: contiguous ranges of equal size, in thread order.
+struct TeamRange {
+  std::size_t lo, hi;
+};
+inline TeamRange team_share(std::size_t n, TeamSlot team) {
+  return {n * std::size_t(team.thread) / std::size_t(team.threads),
+          n * std::size_t(team.thread + 1) / std::size_t(team.threads)};
 }
 
 // Runs body(TeamSlot) on each thread of a new team, or on the caller alone when the team would
