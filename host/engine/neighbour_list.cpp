@@ -1,7 +1,7 @@
 #include <engine/neighbour_list.hpp>
 #include <engine/neighbour_listing.hpp>
 #include <spreadmap/contact.hpp>
-#include <spreadmap/team.hpp>
+#include <engine/thread_team.hpp>
 
 #include <algorithm>
 #ifdef _OPENMP
@@ -28,7 +28,7 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   // The upper neighbours (j > i) of every particle: half the distance tests of a full search.
   first_pair.assign(n + 1, 0);
   int teams = 1;
-  run_team([&](TeamSlot team) {
+  run_team(this_thread_team(), [&](TeamSlot team) {
     if (team.thread == 0) teams = team.threads;
     const auto [lo, hi] = team_share(n, team);
     auto &buf = thread_nbr_[team.thread];
@@ -90,7 +90,7 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   if (history == 0 || old_nbr_.empty()) return;
   // Carry history: the same (i, j) pair of particles in the previous list, found by old indices.
   const std::size_t old_n = old_start_.empty() ? 0 : old_start_.size() - 1;
-  parallel_for(n, [&](long long i) {
+  parallel_for(this_thread_team(), n, [&](long long i) {
     carry_history(static_cast<std::uint32_t>(i), p.list_index.data(), static_cast<std::uint32_t>(old_n), start.data(),
                   nbr.data(), hist.data(), old_start_.data(), old_nbr_.data(), old_hist_.data(), history);
   });
@@ -106,7 +106,7 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
   // Zero between calls of the pair loop, which leaves it so: growing keeps it all zero.
   scratch.resize(std::max(scratch.size(), 6 * (entries + n)));
   int missing = 0;
-  parallel_for(n, [&](long long ii) {
+  parallel_for(this_thread_team(), n, [&](long long ii) {
     const auto i = static_cast<std::uint32_t>(ii);
     std::uint32_t k = start[i];
     for (; k < start[i + 1] && nbr[k] < i; ++k) {
@@ -131,7 +131,7 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
   for (std::size_t i = 0; i < n; ++i) first_pair[i + 1] = first_pair[i] + (start[i + 1] - upper[i]);
   pair_i.resize(first_pair[n]);
   pair_j.resize(first_pair[n]);
-  parallel_for(n, [&](long long ii) {
+  parallel_for(this_thread_team(), n, [&](long long ii) {
     const auto i = static_cast<std::uint32_t>(ii);
     for (std::uint32_t k = upper[i], u = first_pair[i]; k < start[i + 1]; ++k, ++u) {
       pair_i[u] = i;

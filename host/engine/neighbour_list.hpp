@@ -30,7 +30,7 @@ template <class Real> class NeighbourList {
     const bool once = has_mirror_ && !nbr.empty();
     if (!once) return {start.data(), nbr.data(), hist.data()};
     return {start.data(),  nbr.data(),    hist.data(),    mirror.data(),    scratch.data(),
-            upper.data(),  pair_i.data(), pair_j.data(),  first_pair.data()};
+            upper.data(),  pair_i.data(), pair_j.data(),  first_pair.data(), &balance_};
   }
   std::size_t entries() const { return nbr.size(); }
   // After start/nbr were replaced (a checkpoint): finds the mirrors again when asked.
@@ -51,6 +51,7 @@ template <class Real> class NeighbourList {
   // the pair loop's scratch (a record of 6 values per entry, then 6 running sums per particle).
   std::vector<std::uint32_t> mirror, upper, pair_i, pair_j, first_pair;
   std::vector<Real> scratch;
+  PairBalance balance_{};
   bool has_mirror_ = false;
   std::vector<std::uint32_t> old_start_, old_nbr_, lower_;
   std::vector<Real> old_hist_;

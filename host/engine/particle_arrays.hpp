@@ -1,7 +1,7 @@
 // Structure-of-arrays particle state of one Simulation. Every per-particle column lives here so
 // that sorting by cell and removing particles are one gather over all of them.
 #pragma once
-#include <spreadmap/team.hpp>
+#include <engine/thread_team.hpp>
 
 #include <cstddef>
 #include <cstdint>
@@ -47,7 +47,7 @@ template <class T> void gather(std::vector<T> &column, const std::vector<std::ui
   scratch.resize(n * stride);
   T *out = scratch.data();
   const T *in = column.data();
-  parallel_for(n, [&](long long ii) {
+  parallel_for(this_thread_team(), n, [&](long long ii) {
     const std::size_t i = static_cast<std::size_t>(ii), s = src[i];
     for (std::size_t q = 0; q < stride; ++q) out[i * stride + q] = in[s * stride + q];
   });

@@ -4,6 +4,7 @@
 // gives the same sums as the plugin adding to the full arrays directly (x + (0 + c) == x + c).
 #pragma once
 #include <engine/particle_arrays.hpp>
+#include <engine/thread_team.hpp>
 #include <spreadmap/batch.hpp>
 
 #include <cstdint>
@@ -28,7 +29,7 @@ template <class Real> class ParticleSubset {
     history_ = history;
     wall_hist.resize(n * history);
     const std::uint32_t *idx = index.data();
-    parallel_for(n, [&](long long qq) {
+    parallel_for(this_thread_team(), n, [&](long long qq) {
       const auto q = static_cast<std::size_t>(qq);
       const std::uint32_t i = idx[q];
       x[q] = p.x[i]; y[q] = p.y[i]; z[q] = p.z[i];
@@ -72,7 +73,7 @@ template <class Real> class ParticleSubset {
   void scatter(ParticleArrays<Real> &p, std::vector<Real> &dense_overlap, std::vector<Real> &hist) const {
     const std::uint32_t *idx = index_->data();
     const unsigned history = history_;
-    parallel_for(x.size(), [&](long long qq) {
+    parallel_for(this_thread_team(), x.size(), [&](long long qq) {
       const auto q = static_cast<std::size_t>(qq);
       const std::uint32_t i = idx[q];
       p.fx[i] += fx[q]; p.fy[i] += fy[q]; p.fz[i] += fz[q];

@@ -3,7 +3,7 @@
 #include <engine/simulation.hpp>
 #include <engine/neighbour_listing.hpp>
 #include <engine/stability.hpp>
-#include <spreadmap/team.hpp>
+#include <engine/thread_team.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -300,7 +300,7 @@ template <class Real> void Simulation<Real>::rebuild_list() {
   double lo[3] = {inf, inf, inf}, hi[3] = {-inf, -inf, -inf}, r_max = 0;
   {
     Real lx = Real(inf), ly = Real(inf), lz = Real(inf), hx = Real(-inf), hy = Real(-inf), hz = Real(-inf), rm = 0;
-    run_team([&](TeamSlot team) {
+    run_team(this_thread_team(), [&](TeamSlot team) {
       Real mine[7] = {Real(inf), Real(inf), Real(inf), Real(-inf), Real(-inf), Real(-inf), 0};
       const auto [lo, hi] = team_share(n, team);
       for (std::size_t i = lo; i < hi; ++i) {
@@ -328,7 +328,7 @@ template <class Real> void Simulation<Real>::rebuild_list() {
 
   // Stable counting sort by cell.
   cell_.resize(n);
-  parallel_for(n, [&](long long i) { cell_[i] = grid.cell_of(p_.x[i], p_.y[i], p_.z[i]); });
+  parallel_for(this_thread_team(), n, [&](long long i) { cell_[i] = grid.cell_of(p_.x[i], p_.y[i], p_.z[i]); });
   cell_start_.assign(n_cells + 1, 0);
   for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_[i] + 1];
   for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
@@ -363,7 +363,7 @@ template <class Real> void Simulation<Real>::rebuild_list() {
   if (settings_.sleep) find_border();
   asleep_at_build_ = asleep_;
   for (auto &ge : geometries_) find_near_geometry(ge);
-  parallel_for(n, [&](long long i) {
+  parallel_for(this_thread_team(), n, [&](long long i) {
     p_.list_index[i] = static_cast<std::uint32_t>(i);
     p_.x0[i] = p_.x[i]; p_.y0[i] = p_.y[i]; p_.z0[i] = p_.z[i];
   });
@@ -388,6 +388,7 @@ template <class Real> Particles<Real> Simulation<Real>::view() {
   }
   v.dt = Real(dt_);
   v.t = Real(time_);
+  v.team = this_thread_team();
   return v;
 }
 
@@ -404,7 +405,7 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot &plane) {
   const int max_threads = max_team_size();
   if (thread_index_.size() < std::size_t(max_threads)) thread_index_.resize(max_threads);
   int teams = 1;
-  run_team([&](TeamSlot team) {
+  run_team(this_thread_team(), [&](TeamSlot team) {
     if (team.thread == 0) teams = team.threads;
     auto &mine = thread_index_[team.thread];
     mine.clear();
@@ -442,7 +443,7 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot &plane
   }
   const unsigned history = s.history;
   std::uint32_t touching = 0;
-  run_team([&](TeamSlot team) {
+  run_team(this_thread_team(), [&](TeamSlot team) {
     const auto [lo, hi] = team_share(n, team);
     std::uint32_t mine = 0;
     with_simd([&] {
@@ -476,7 +477,7 @@ void Simulation<Real>::subset_forces(const ContactLaw &law, const Particles<Real
 template <class Real> void Simulation<Real>::compute_forces() {
   const std::size_t n = p_.size();
   if (!forces_zeroed_) {
-    parallel_for(n, [&](long long i) {
+    parallel_for(this_thread_team(), n, [&](long long i) {
       p_.fx[i] = 0; p_.fy[i] = 0; p_.fz[i] = 0;
       p_.tx[i] = 0; p_.ty[i] = 0; p_.tz[i] = 0;
     });
@@ -532,7 +533,7 @@ template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot &ge
   if (n == 0 || !(skin_ > 0) || !(speed >= 0 && speed < inf)) return;
   const Real margin = Real(3 * skin_);
   inflated_radius_.resize(n);
-  parallel_for(n, [&](long long i) { inflated_radius_[i] = p_.r[i] + margin; });
+  parallel_for(this_thread_team(), n, [&](long long i) { inflated_radius_[i] = p_.r[i] + margin; });
   Particles<Real> v = view();
   v.r = inflated_radius_.data();
   WallContacts<Real> w = ge.slot.view(n);
@@ -617,7 +618,7 @@ template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real d
   const KickDrift<Real> k = integration(half_dt, dt);
   std::uint32_t escaped = 0, nonfinite = 0;
   Real largest = 0;
-  run_team([&](TeamSlot team) {
+  run_team(this_thread_team(), [&](TeamSlot team) {
     KickDriftResult<Real> mine;
     const auto [lo, hi] = team_share(n, team);
     kick_drift(k, lo, hi, mine);
@@ -667,7 +668,7 @@ template <class Real> void Simulation<Real>::kick_and_check(Real half_dt) {
   const KickDrift<Real> k = integration(half_dt, Real(dt_));
   const Real limit2 = Real(speed_limit_ * speed_limit_);
   std::uint32_t bad = 0;
-  run_team([&](TeamSlot team) {
+  run_team(this_thread_team(), [&](TeamSlot team) {
     const auto [lo, hi] = team_share(n, team);
     const std::uint32_t mine = kick_check(k, limit2, lo, hi);
 #pragma omp atomic
@@ -705,7 +706,7 @@ template <class Real> void Simulation<Real>::check_overlaps() {
   std::uint32_t bad = 0;
   const Real *x = p_.x.data(), *y = p_.y.data(), *z = p_.z.data(), *r = p_.r.data();
   const PairList<Real> l = list_.view();  // its upper entries, when the list keeps them
-  run_team([&](TeamSlot team) {
+  run_team(this_thread_team(), [&](TeamSlot team) {
     std::uint32_t mine = 0;
     if (l.pair_i) {  // the flat sequence of upper pairs: one loop, vectorised
       const std::uint64_t pairs = l.first_pair[n];
@@ -893,7 +894,7 @@ template <class Real> void Simulation<Real>::update_sleep() {
   const std::uint32_t needed = settings_.sleep_checks;
   std::uint32_t fell = 0;
   const std::size_t n = p_.size();
-  run_team([&](TeamSlot team) {
+  run_team(this_thread_team(), [&](TeamSlot team) {
     std::uint32_t mine = 0;
     const auto [lo, hi] = team_share(n, team);
     for (std::size_t ii = lo; ii < hi; ++ii) {

@@ -7,3 +7,6 @@ spreadmap_test(unit engine_io
 spreadmap_test(unit engine_kick_drift
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_kick_drift_test.cpp
   LIBS spreadmap_engine)
+spreadmap_test(unit engine_thread_team
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_thread_team_test.cpp
+  LIBS spreadmap_engine)

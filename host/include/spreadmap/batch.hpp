@@ -6,6 +6,8 @@
 
 namespace spreadmap {
 
+struct Team;  // team.hpp
+
 // Particle state. Read-only for plugins except the force/torque accumulators.
 template <class Real> struct Particles {
   std::uint32_t n;
@@ -20,6 +22,7 @@ template <class Real> struct Particles {
   std::uint8_t periodic[3];  // 1: periodic along that axis (minimum image)
   Real dt;                   // time step [s]
   Real t;                    // time at which forces are evaluated [s]
+  const Team *team = nullptr;  // the host's threads, for the loop to run on (null: an OpenMP region)
 };
 
 // Full (both-direction) neighbour list in CSR form: the neighbours of particle i are
@@ -31,7 +34,17 @@ template <class Real> struct Particles {
 // entries of all particles, in list order, also stand as one flat sequence: pair u is (pair_i[u],
 // pair_j[u]), and particle i's are pairs [first_pair[i], first_pair[i + 1]). scratch holds
 // 6 * (entries + particles) values: a record of 6 values per entry, then 6 running sums per
-// particle; all of it must be zero on entry, and the loop leaves it zero on exit.
+// particle; all of it must be zero on entry, and the loop leaves it zero on exit. balance: see above.
+// How the threads of the pair loop share its list entries, tuned by the loop from how long each
+// thread took: the split decides which thread evaluates a pair, never the result (pair_once.hpp).
+// Engine-owned, zero at first.
+struct PairBalance {
+  static constexpr int max_threads = 64;
+  std::int32_t threads;             // cut is for this many threads (otherwise equal shares)
+  double cut[max_threads + 1];      // thread t takes the entries from cut[t] to cut[t + 1] x all
+  double seconds[max_threads];      // each thread's last sweep
+};
+
 template <class Real> struct PairList {
   const std::uint32_t *start;
   const std::uint32_t *nbr;
@@ -40,6 +53,7 @@ template <class Real> struct PairList {
   Real *scratch = nullptr;
   const std::uint32_t *upper = nullptr;
   const std::uint32_t *pair_i = nullptr, *pair_j = nullptr, *first_pair = nullptr;
+  PairBalance *balance = nullptr;  // null: equal shares of the entries
 };
 
 // One wall contact per particle and wall, stored densely by particle index: particle i touches the

@@ -92,7 +92,7 @@ SM_HD ContactState<Real> pair_contact_state(const Particles<Real> &p, std::uint3
 }
 
 // The forces on particle i from its neighbours, summed in list order and added to its accumulators.
-// The body of both backends' pair loops (the OpenMP loop below, one GPU thread per particle under
+// The body of both backends' pair loops (the team's loop below, one GPU thread per particle under
 // CUDA), so the contact kinematics exist once.
 template <class Law, class Real>
 SM_HD void pair_forces_on(const Law &law, const Particles<Real> &p, const PairList<Real> &list, std::uint32_t i) {
@@ -124,7 +124,7 @@ void pair_loop(const Law &law, const Particles<Real> &p, const PairList<Real> &l
   if constexpr (Law::history == 0) {
     if (list.mirror && list.scratch && list.pair_i) return pair_loop_once(law, p, list);
   }
-  parallel_for(p.n, [&](long long i) { pair_forces_on(law, p, list, static_cast<std::uint32_t>(i)); });
+  parallel_for(p.team, p.n, [&](long long i) { pair_forces_on(law, p, list, static_cast<std::uint32_t>(i)); });
 }
 
 // The kinematics of particle i against a wall from its dense record (touching: overlap > 0).
@@ -214,12 +214,12 @@ void wall_range(const Law &law, const Particles<Real> &p, const WallContacts<Rea
 template <class Law, class Real>
 void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w) {
   if constexpr (Law::history == 0) {
-    run_team([&](TeamSlot team) {
+    run_team(p.team, [&](TeamSlot team) {
       const TeamRange r = team_share(w.n, team);
       with_simd([&] { detail::wall_range(law, p, w, static_cast<std::uint32_t>(r.lo), static_cast<std::uint32_t>(r.hi)); });
     });
   } else {
-    parallel_for(w.n, [&](long long i) { wall_force_on(law, p, w, static_cast<std::uint32_t>(i)); });
+    parallel_for(p.team, w.n, [&](long long i) { wall_force_on(law, p, w, static_cast<std::uint32_t>(i)); });
   }
 }
 

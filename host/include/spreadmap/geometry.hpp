@@ -64,7 +64,7 @@ SM_HD void geometry_contact_of(const Geometry &g, const Particles<Real> &p, cons
 
 template <class Geometry, class Real>
 void geometry_loop(const Geometry &g, const Particles<Real> &p, WallContacts<Real> &w) {
-  parallel_for(p.n, [&](long long i) { geometry_contact_of(g, p, w, static_cast<std::uint32_t>(i)); });
+  parallel_for(p.team, p.n, [&](long long i) { geometry_contact_of(g, p, w, static_cast<std::uint32_t>(i)); });
 }
 
 namespace detail {

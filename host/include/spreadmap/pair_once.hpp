@@ -9,8 +9,9 @@
 // result with j's normal and radius, and each particle still adds its contributions in list order.
 // Results do not depend on the number of threads.
 //
-// How the order is kept: each thread sweeps a range [lo, hi) of particles (balanced by list
-// entries) in increasing order, through the flat sequence of their upper entries (j > i, see
+// How the order is kept: each thread sweeps a range [lo, hi) of particles (cut by list entries, in
+// shares tuned from the threads' last timings; which thread evaluates a pair does not change the
+// result) in increasing order, through the flat sequence of their upper entries (j > i, see
 // PairList). Particle j's list holds its lower neighbours first, by increasing index, then its upper
 // ones; the sweep meets them in that very order (j's lower neighbours are rows before j; its upper
 // entries are j's own row). So a contribution is added straight to the particle's running sum (in
@@ -30,24 +31,52 @@
 #include <spreadmap/team.hpp>
 
 #include <algorithm>
-#ifdef _OPENMP
-#include <omp.h>
-#endif
+#include <chrono>
 
 namespace spreadmap {
 
 namespace detail {
-// The particles [lo, hi) of thread t of nt, cut where the list entries are shared equally.
-inline void entry_balanced_range(const std::uint32_t *start, std::uint32_t n, int t, int nt, std::uint32_t &lo,
-                                 std::uint32_t &hi) {
+// The particles [lo, hi) of thread t of nt, cut where the list entries are shared as `balance` says
+// (equally without one, or when it is for another number of threads).
+inline void entry_balanced_range(const std::uint32_t *start, std::uint32_t n, int t, int nt, const PairBalance *balance,
+                                 std::uint32_t &lo, std::uint32_t &hi) {
   const std::uint64_t entries = start[n];
+  const bool tuned = balance && balance->threads == nt;
   auto cut = [&](int k) -> std::uint32_t {
     if (k >= nt) return n;
-    const std::uint64_t target = entries * std::uint64_t(k) / std::uint64_t(nt);
+    const std::uint64_t target = tuned ? std::uint64_t(double(entries) * balance->cut[k])
+                                       : entries * std::uint64_t(k) / std::uint64_t(nt);
     return static_cast<std::uint32_t>(std::lower_bound(start, start + n, target) - start);
   };
   lo = cut(t);
   hi = cut(t + 1);
+}
+
+// After a sweep of nt threads: moves the cuts half way towards shares in proportion to each thread's
+// speed (its share over its time), so that the threads finish together. Half way: one slow sweep (a
+// thread preempted) moves them only so far. No share falls below a quarter of an equal one.
+inline void retune(PairBalance &b, int nt) {
+  if (nt < 2 || nt > PairBalance::max_threads) return;
+  if (b.threads != nt) {  // the sweep just timed had equal shares
+    b.threads = nt;
+    for (int k = 0; k <= nt; ++k) b.cut[k] = double(k) / nt;
+  }
+  double speed[PairBalance::max_threads], total = 0;
+  for (int t = 0; t < nt; ++t) {
+    if (!(b.seconds[t] > 0)) return;
+    speed[t] = (b.cut[t + 1] - b.cut[t]) / b.seconds[t];
+    total += speed[t];
+  }
+  if (!(total > 0)) return;
+  double share[PairBalance::max_threads], sum = 0;
+  for (int t = 0; t < nt; ++t) sum += share[t] = std::max(speed[t] / total, 0.25 / nt);
+  double end = 0;
+  for (int t = 0; t + 1 < nt; ++t) {
+    end += share[t] / sum;
+    b.cut[t + 1] = 0.5 * (b.cut[t + 1] + end);
+  }
+  b.cut[0] = 0;
+  b.cut[nt] = 1;
 }
 
 // One thread's share of the loop: its range, and where its running sums live.
@@ -195,10 +224,11 @@ template <class Law, class Real>
 void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
   static_assert(Law::history == 0, "a law with history is evaluated for every entry");
   const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0;
-  run_team([&](TeamSlot team) {
+  run_team(p.team, [&](TeamSlot team) {
     const auto [t, nt] = team;
+    const auto began = std::chrono::steady_clock::now();
     detail::PairSweep<Real> sweep;
-    detail::entry_balanced_range(list.start, p.n, t, nt, sweep.lo, sweep.hi);
+    detail::entry_balanced_range(list.start, p.n, t, nt, list.balance, sweep.lo, sweep.hi);
     sweep.sums = list.scratch + std::size_t(list.start[p.n]) * 6;  // after the records; zero on entry and exit
     sweep.find_waiting_end(list);
     auto sweep_with = [&]<bool PX, bool PY, bool PZ>() { with_simd([&] { detail::sweep_pairs<PX, PY, PZ>(law, p, list, sweep); }); };
@@ -209,9 +239,12 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
       if (py) pz ? sweep_with.template operator()<false, true, true>() : sweep_with.template operator()<false, true, false>();
       else pz ? sweep_with.template operator()<false, false, true>() : sweep_with.template operator()<false, false, false>();
     }
-#pragma omp barrier
+    const bool tuning = list.balance && nt > 1 && nt <= PairBalance::max_threads;
+    if (tuning) list.balance->seconds[t] = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    team_barrier(p.team);
     for (std::uint32_t i = sweep.lo; i < sweep.hi; ++i)
       if (sweep.waits(list, i)) detail::add_records(p, list, i);
+    if (tuning && t == 0) detail::retune(*list.balance, nt);  // the others read the cuts before the barrier
   });
 }
 

@@ -1,8 +1,11 @@
-// This thread's place in the current OpenMP team, and the team size a parallel region would get:
-// one thread of one when built without OpenMP. Loops split work by these so that each thread owns a
-// fixed range, which keeps results independent of scheduling.
+// Teams of threads for the loops of a step. Loops split work into fixed contiguous ranges, one per
+// thread, which keeps results independent of scheduling. A loop runs on the team it is given: the
+// host lends plugins its own (Particles::team), whose threads wait for work and for each other by
+// spinning in user space; with no team (null) it runs in an OpenMP parallel region. One thread of one
+// when built without OpenMP.
 #pragma once
 #include <cstddef>
+#include <type_traits>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -13,14 +16,16 @@ struct TeamSlot {
   int thread = 0, threads = 1;
 };
 
-inline TeamSlot team_slot() {
-#ifdef _OPENMP
-  return {omp_get_thread_num(), omp_get_num_threads()};
-#else
-  return {};
-#endif
-}
+// A team of threads that runs a body once on each of its threads. Plain function pointers: it crosses
+// the plugin boundary. The host's is engine/thread_team.hpp.
+struct Team {
+  void *self;
+  int (*size)(void *self);                                          // threads a run would get now
+  void (*run)(void *self, void (*body)(void *arg, TeamSlot), void *arg);  // returns when all are done
+  void (*barrier)(void *self);                                      // inside a run: waits for its threads
+};
 
+// The number of threads a run would get: the OpenMP setting (OMP_NUM_THREADS, omp_set_num_threads).
 inline int max_team_size() {
 #ifdef _OPENMP
   return omp_get_max_threads();
@@ -38,34 +43,50 @@ inline TeamRange team_share(std::size_t n, TeamSlot team) {
           n * std::size_t(team.thread + 1) / std::size_t(team.threads)};
 }
 
-// Runs body(TeamSlot) on each thread of a new team, or on the caller alone when the team would
-// have one thread. A region of one thread is not free: once the process has had a larger team,
-// libgomp wakes its idle threads with a system call at every region (a few microseconds each, about
-// 5 % of a step on one thread). A barrier inside body is then a no-op (an orphaned barrier).
-template <class Body> void run_team(Body &&body) {
+// Runs body(TeamSlot) on each thread of `team` (an OpenMP region when null), or on the caller alone
+// when the team would have one thread: a region of one thread is not free (libgomp wakes its idle
+// threads with a system call at every region once the process has had a larger team). Inside body,
+// team_barrier waits for the team's other threads.
+template <class Body> void run_team(const Team *team, Body &&body) {
+  using B = std::remove_reference_t<Body>;
+  if (team) {
+    if (team->size(team->self) > 1) {
+      team->run(team->self, [](void *arg, TeamSlot slot) { (*static_cast<B *>(arg))(slot); }, &body);
+      return;
+    }
+  }
 #ifdef _OPENMP
-  if (omp_get_max_threads() > 1) {
+  else if (omp_get_max_threads() > 1) {
 #pragma omp parallel
-    body(team_slot());
+    body(TeamSlot{omp_get_thread_num(), omp_get_num_threads()});
     return;
   }
 #endif
   body(TeamSlot{});
 }
 
-// body(i) for i in [0, n), split into equal contiguous ranges, one per thread of the team (the
-// static schedule), or on the caller alone when the team would have one thread or `parallel` is false.
-template <class Body> void parallel_for(long long n, Body &&body, bool parallel = true) {
+// Inside run_team's body: returns once every thread of the run has called it.
+inline void team_barrier(const Team *team) {
+  if (team) {
+    team->barrier(team->self);
+    return;
+  }
 #ifdef _OPENMP
-  if (parallel && omp_get_max_threads() > 1) {
-#pragma omp parallel for schedule(static)
+#pragma omp barrier
+#endif
+}
+
+// body(i) for i in [0, n), in contiguous ranges of equal size, one per thread of the team, or on the
+// caller alone when the team would have one thread or `parallel` is false.
+template <class Body> void parallel_for(const Team *team, long long n, Body &&body, bool parallel = true) {
+  if (!parallel) {
     for (long long i = 0; i < n; ++i) body(i);
     return;
   }
-#else
-  (void)parallel;
-#endif
-  for (long long i = 0; i < n; ++i) body(i);
+  run_team(team, [&](TeamSlot slot) {
+    const TeamRange r = team_share(std::size_t(n), slot);
+    for (auto i = static_cast<long long>(r.lo); i < static_cast<long long>(r.hi); ++i) body(i);
+  });
 }
 
 }  // namespace spreadmap
