@@ -224,6 +224,7 @@ template <class Law, class Real>
 void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
   static_assert(Law::history == 0, "a law with history is evaluated for every entry");
   const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0;
+  int threads = 1;
   run_team(p.team, [&](TeamSlot team) {
     const auto [t, nt] = team;
     const auto began = std::chrono::steady_clock::now();
@@ -239,13 +240,17 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
       if (py) pz ? sweep_with.template operator()<false, true, true>() : sweep_with.template operator()<false, true, false>();
       else pz ? sweep_with.template operator()<false, false, true>() : sweep_with.template operator()<false, false, false>();
     }
-    const bool tuning = list.balance && nt > 1 && nt <= PairBalance::max_threads;
-    if (tuning) list.balance->seconds[t] = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+    const auto swept = std::chrono::steady_clock::now();
     team_barrier(p.team);
+    const auto summing = std::chrono::steady_clock::now();
     for (std::uint32_t i = sweep.lo; i < sweep.hi; ++i)
       if (sweep.waits(list, i)) detail::add_records(p, list, i);
-    if (tuning && t == 0) detail::retune(*list.balance, nt);  // the others read the cuts before the barrier
+    // the thread's work, without its wait at the barrier
+    if (list.balance && t < PairBalance::max_threads)
+      list.balance->seconds[t] = std::chrono::duration<double>(swept - began + (std::chrono::steady_clock::now() - summing)).count();
+    if (t == 0) threads = nt;
   });
+  if (list.balance) detail::retune(*list.balance, threads);  // every thread is done with the cuts
 }
 
 }  // namespace spreadmap
