@@ -45,8 +45,9 @@ struct Settings {
   // no copies, and on every thread. false: always the gathered copy (for tests).
   bool planes_in_place = true;
 
-  // Scenes with fewer particles than this step on one thread: below it, starting OpenMP teams
-  // (~20 per step) costs more than the work, and on a busy machine much more. Results do not
+  // Scenes with fewer particles than this step on one thread: below it, starting the thread team
+  // (~20 runs per step) costs more than the work, and on a busy machine much more (measured when
+  // the runs were OpenMP regions, dearer than the engine's own team). Results do not
   // depend on it (the engine is deterministic for any thread count). 0: always all threads.
   std::size_t parallel_min_particles = 2000;
 

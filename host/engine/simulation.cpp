@@ -20,8 +20,9 @@ namespace spreadmap::engine {
 namespace {
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-// Runs the enclosing scope on one OpenMP thread when asked (small scenes), restoring the caller's
-// thread count on exit, exceptions included. Affects only the calling thread's parallel regions.
+// Runs the enclosing scope on one thread when asked (small scenes), restoring the caller's thread
+// count (the OpenMP setting the thread team follows) on exit, exceptions included. Affects only the
+// calling thread's runs.
 class SerialScope {
  public:
   explicit SerialScope(bool serial) {

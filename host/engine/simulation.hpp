@@ -6,10 +6,11 @@
 // One step (the LAMMPS/LIGGGHTS order): half kick with the last forces, drift, remove particles that
 // left through an open face, rebuild the neighbour list if needed, evaluate forces with the
 // half-step velocities, half kick. Everything is deterministic: results are bitwise identical run
-// to run, for any number of OpenMP threads, and across a checkpoint/resume.
+// to run, for any number of threads, and across a checkpoint/resume.
 //
-// Thread safety: one Simulation is driven by one thread (it uses OpenMP inside); distinct
-// Simulations may run concurrently if the plugins' bound instances allow it.
+// Thread safety: one Simulation is driven by one thread (it runs its loops on that thread's team,
+// engine/thread_team.hpp); distinct Simulations may run concurrently if the plugins' bound instances
+// allow it.
 #pragma once
 #include <engine/counters.hpp>
 #include <engine/domain.hpp>

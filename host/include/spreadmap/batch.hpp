@@ -25,16 +25,6 @@ template <class Real> struct Particles {
   const Team *team = nullptr;  // the host's threads, for the loop to run on (null: an OpenMP region)
 };
 
-// Full (both-direction) neighbour list in CSR form: the neighbours of particle i are
-// nbr[start[i] .. start[i+1]), in increasing index order. Each particle sums its own forces in this
-// fixed order, so results do not depend on the number of threads. hist holds `history` values per
-// list entry; the engine carries them across list rebuilds.
-// Optional (null when absent), for laws without history on the CPU (pair_once.hpp): mirror[k] is
-// the entry (j, i) of entry k = (i, j); upper[i] is particle i's first entry with j > i. The upper
-// entries of all particles, in list order, also stand as one flat sequence: pair u is (pair_i[u],
-// pair_j[u]), and particle i's are pairs [first_pair[i], first_pair[i + 1]). scratch holds
-// 6 * (entries + particles) values: a record of 6 values per entry, then 6 running sums per
-// particle; all of it must be zero on entry, and the loop leaves it zero on exit. balance: see above.
 // How the threads of the pair loop share its list entries, tuned by the loop from how long each
 // thread took: the split decides which thread evaluates a pair, never the result (pair_once.hpp).
 // Engine-owned, zero at first.
@@ -45,6 +35,17 @@ struct PairBalance {
   double seconds[max_threads];      // each thread's last sweep
 };
 
+// Full (both-direction) neighbour list in CSR form: the neighbours of particle i are
+// nbr[start[i] .. start[i+1]), in increasing index order. Each particle sums its own forces in this
+// fixed order, so results do not depend on the number of threads. hist holds `history` values per
+// list entry; the engine carries them across list rebuilds.
+// Optional (null when absent), for laws without history on the CPU (pair_once.hpp): mirror[k] is
+// the entry (j, i) of entry k = (i, j); upper[i] is particle i's first entry with j > i. The upper
+// entries of all particles, in list order, also stand as one flat sequence: pair u is (pair_i[u],
+// pair_j[u]), and particle i's are pairs [first_pair[i], first_pair[i + 1]). scratch holds
+// 6 * (entries + particles) values: a record of 6 values per entry, then 6 running sums per
+// particle; all of it must be zero on entry, and the loop leaves it zero on exit. balance: see
+// PairBalance above.
 template <class Real> struct PairList {
   const std::uint32_t *start;
   const std::uint32_t *nbr;
