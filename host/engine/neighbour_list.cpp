@@ -1,6 +1,7 @@
 #include <engine/neighbour_list.hpp>
 #include <engine/neighbour_listing.hpp>
 #include <spreadmap/contact.hpp>
+#include <spreadmap/pair_once.hpp>
 #include <engine/thread_team.hpp>
 
 #include <algorithm>
@@ -28,9 +29,11 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   // The upper neighbours (j > i) of every particle: half the distance tests of a full search.
   first_pair.assign(n + 1, 0);
   int teams = 1;
+  thread_first_.resize(max_threads);
   run_team(this_thread_team(), [&](TeamSlot team) {
     if (team.thread == 0) teams = team.threads;
     const auto [lo, hi] = team_share(n, team);
+    thread_first_[team.thread] = lo;  // the team's split, whichever it is (TeamSlot::cuts)
     auto &buf = thread_nbr_[team.thread];
     buf.clear();
     CellRanges ranges;
@@ -58,7 +61,7 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   pair_j.resize(pairs);
   pair_i.resize(pairs);
   for (int t = 0; t < teams; ++t)
-    std::copy(thread_nbr_[t].begin(), thread_nbr_[t].end(), pair_j.begin() + first_pair[team_share(n, {t, teams}).lo]);
+    std::copy(thread_nbr_[t].begin(), thread_nbr_[t].end(), pair_j.begin() + first_pair[thread_first_[t]]);
   // The full list: particle i's lower neighbours (the pairs (j, i), met in increasing j), then its
   // upper ones; each entry's mirror is known as it is written.
   lower_.assign(n, 0);
@@ -138,6 +141,19 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
       pair_j[u] = nbr[k];
     }
   });
+}
+
+template <class Real> bool NeighbourList<Real>::pair_owners(int threads, std::vector<std::size_t> &cuts) const {
+  const std::size_t n = start.empty() ? 0 : start.size() - 1;
+  if (!has_mirror_ || nbr.empty() || threads < 2) return false;
+  cuts.resize(std::size_t(threads) + 1);
+  for (int t = 0; t < threads; ++t) {
+    std::uint32_t lo, hi;
+    spreadmap::detail::entry_balanced_range(start.data(), static_cast<std::uint32_t>(n), t, threads, &balance_, lo, hi);
+    cuts[t] = lo;
+    cuts[t + 1] = hi;
+  }
+  return true;
 }
 
 template class NeighbourList<double>;

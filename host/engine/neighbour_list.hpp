@@ -33,6 +33,9 @@ template <class Real> class NeighbourList {
             upper.data(),  pair_i.data(), pair_j.data(),  first_pair.data(), &balance_};
   }
   std::size_t entries() const { return nbr.size(); }
+  // The particles whose pairs each of `threads` threads evaluates in the pair loop of pair_once.hpp
+  // (thread t: [cuts[t], cuts[t + 1])), when that loop is used; false otherwise.
+  bool pair_owners(int threads, std::vector<std::size_t> &cuts) const;
   // After start/nbr were replaced (a checkpoint): finds the mirrors again when asked.
   void restore_mirror(bool with_mirror, unsigned history) {
     has_mirror_ = false;
@@ -56,6 +59,7 @@ template <class Real> class NeighbourList {
   std::vector<std::uint32_t> old_start_, old_nbr_, lower_;
   std::vector<Real> old_hist_;
   std::vector<std::vector<std::uint32_t>> thread_nbr_;
+  std::vector<std::size_t> thread_first_;  // each thread's first particle in the last build
 };
 
 }  // namespace spreadmap::engine

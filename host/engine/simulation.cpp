@@ -370,6 +370,19 @@ template <class Real> void Simulation<Real>::rebuild_list() {
   });
 }
 
+// Every loop of a step over the particles takes the particles whose pairs the thread evaluates: a
+// particle's forces, written by the pair loop, are then kicked, cleared and added to by the same
+// core, instead of crossing to another core's cache and back each step. The pair loop cuts where
+// the threads' times balance (7 % of the particles away from equal shares on the peers' scene); the
+// other loops are short and stream memory, where the crossing cost more than the unequal shares
+// (the second half kick on 2 threads: 12.8 us a step with equal shares, 8.7 us with these).
+template <class Real> void Simulation<Real>::share_like_pairs() {
+  const int threads = max_team_size();
+  ThreadTeam &team = this_thread_team_object();
+  if (list_valid_ && list_.pair_owners(threads, owner_cuts_)) team.set_cuts(owner_cuts_.data(), p_.size(), threads);
+  else team.set_cuts(nullptr, 0, 0);
+}
+
 // ---------------------------------------------------------------------------------------------
 // forces
 
@@ -801,13 +814,20 @@ template <class Real> void Simulation<Real>::step() {
   const auto t0 = std::chrono::steady_clock::now();
   const SerialScope serial(p_.size() < settings_.parallel_min_particles);
   prepare();
+  struct EqualSharesAfter {
+    ~EqualSharesAfter() { this_thread_team_object().set_cuts(nullptr, 0, 0); }
+  } equal_shares_after;  // outside a step, nothing is split by this simulation's particles
+  share_like_pairs();
   const Real dt = Real(dt_), half = Real(0.5 * dt_);
   const bool rebuild = kick_and_drift(half, dt);
   for (auto &pl : planes_)
     for (int a = 0; a < 3; ++a) pl.wall.point[a] += dt_ * pl.wall.velocity[a];
   time_ += dt_;
   ++step_;
-  if (rebuild || !list_valid_) rebuild_list();
+  if (rebuild || !list_valid_) {
+    rebuild_list();
+    share_like_pairs();
+  }
   compute_forces();
   kick_and_check(half);
   if (step_ % settings_.check_every == 0) check_overlaps();

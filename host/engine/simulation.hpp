@@ -152,6 +152,7 @@ template <class Real = double> class Simulation {
   void prepare();
   void resolve_step();
   void rebuild_list();
+  void share_like_pairs();  // the step's loops split the particles as the pair loop does
   void find_near_geometry(GeometrySlot &geometry);
   void geometry_forces(GeometrySlot &geometry, const Particles<Real> &view);
   void compute_forces();
@@ -208,6 +209,7 @@ template <class Real = double> class Simulation {
 
   // Scratch (kept to avoid allocation in rebuilds).
   std::vector<std::uint32_t> perm_, cell_, cell_sorted_, cell_start_, scratch_index_;
+  std::vector<std::size_t> owner_cuts_;  // see share_like_pairs
   std::vector<Real> scratch_real_;
   std::vector<Real> inflated_radius_;   // radii + margin for the geometry search
   std::vector<std::vector<std::uint32_t>> thread_index_;  // per-thread index lists

@@ -83,7 +83,7 @@ void ThreadTeam::run(void (*body)(void *, TeamSlot), void *arg) {
   post(threads);
   {
     const Inside inside;
-    body(arg, TeamSlot{0, threads});
+    body(arg, slot(0, threads));
   }
   await(finished_, [threads](unsigned done) { return done == unsigned(threads - 1); });
   running_ = false;
@@ -100,7 +100,7 @@ void ThreadTeam::work(int thread, unsigned seen) {
     if (thread >= threads) return;
     {
       const Inside inside;
-      body_(arg_, TeamSlot{thread, threads});
+      body_(arg_, slot(thread, threads));
     }
     finished_.fetch_add(1);
     wake(finished_);
@@ -119,9 +119,20 @@ void ThreadTeam::barrier() {
   }
 }
 
-const Team *this_thread_team() {
-  thread_local ThreadTeam team;
-  return team.view();
+TeamSlot ThreadTeam::slot(int thread, int threads) const {
+  TeamSlot s{thread, threads};
+  if (cuts_ && cuts_threads_ == threads) {
+    s.cuts = cuts_;
+    s.cuts_for = cuts_for_;
+  }
+  return s;
 }
+
+ThreadTeam &this_thread_team_object() {
+  thread_local ThreadTeam team;
+  return team;
+}
+
+const Team *this_thread_team() { return this_thread_team_object().view(); }
 
 }  // namespace spreadmap::engine

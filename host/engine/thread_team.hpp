@@ -20,6 +20,13 @@ class ThreadTeam {
   ThreadTeam &operator=(const ThreadTeam &) = delete;
 
   const Team *view() const { return &view_; }
+  // Until cleared (null): a run of `threads` threads tells its loops over n items to split them at
+  // cuts (threads + 1 values), see TeamSlot.
+  void set_cuts(const std::size_t *cuts, std::size_t n, int threads) {
+    cuts_ = cuts;
+    cuts_for_ = n;
+    cuts_threads_ = threads;
+  }
 
  private:
   static int size(void *self);
@@ -32,11 +39,15 @@ class ThreadTeam {
   // Waits until done(value of a) holds: spins a while, then sleeps until told (wake).
   template <class Done> void await(const std::atomic<unsigned> &a, Done done);
   void wake(std::atomic<unsigned> &a);
+  TeamSlot slot(int thread, int threads) const;
 
   Team view_;
   std::vector<std::thread> workers_;  // threads 1, 2, ... of a run; the caller is thread 0
   void (*body_)(void *, TeamSlot) = nullptr;
   void *arg_ = nullptr;
+  const std::size_t *cuts_ = nullptr;
+  std::size_t cuts_for_ = 0;
+  int cuts_threads_ = 0;
   int threads_ = 1;       // of the run in progress
   bool running_ = false;  // a run of several threads is in progress
   std::atomic<long long> spin_ns_{0};  // how long await spins before it sleeps
@@ -50,6 +61,7 @@ class ThreadTeam {
 };
 
 // The team of the calling thread (each thread that runs a simulation has its own).
+ThreadTeam &this_thread_team_object();
 const Team *this_thread_team();
 
 }  // namespace spreadmap::engine

@@ -1,11 +1,14 @@
 // The host's thread team (engine/thread_team.hpp) and the pair loop's balance of work between its
 // threads (detail::retune in spreadmap/pair_once.hpp): every thread of a run gets its place once,
 // work is shared exactly, a barrier separates phases, a run inside a run takes its caller alone, the
-// team grows and shrinks with the OpenMP setting, and the cuts move to where the threads finish
-// together.
+// team grows and shrinks with the OpenMP setting, loops follow the cuts the host sets for a step, the
+// cuts move to where the threads finish together, and the records of the particles that wait for
+// the barrier are summed once whichever thread sums them.
 #include <engine/thread_team.hpp>
 #include <spreadmap/contact.hpp>
+#include <spreadmap/pair_once.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <gtest/gtest.h>
@@ -127,5 +130,75 @@ TEST(PairBalance, CutsMoveHalfWayToEqualTimes) {
     }
     const double each = cost(0, 1) / threads;
     for (int t = 0; t < threads; ++t) EXPECT_NEAR(cost(b.cut[t], b.cut[t + 1]), each, 1e-6 * each) << threads << " threads";
+  }
+}
+
+TEST(ThreadTeam, LoopsFollowTheCutsSetForTheirItemCount) {
+  const ThreadsScope scope(3);
+  sm::engine::ThreadTeam &team = sm::engine::this_thread_team_object();
+  const std::size_t cuts[4] = {0, 70, 90, 100};
+  auto shares = [&](std::size_t n) {
+    std::vector<sm::TeamRange> got(3);
+    sm::run_team(this_thread_team(), [&](sm::TeamSlot slot) { got[slot.thread] = sm::team_share(n, slot); });
+    return got;
+  };
+  team.set_cuts(cuts, 100, 3);
+  const auto cut = shares(100), other = shares(99);
+  team.set_cuts(cuts, 100, 2);  // set for another team size: not followed
+  const auto wrong_size = shares(100);
+  team.set_cuts(nullptr, 0, 0);
+  const auto cleared = shares(100);
+  for (int t = 0; t < 3; ++t) {
+    EXPECT_EQ(cut[t].lo, cuts[t]) << t;
+    EXPECT_EQ(cut[t].hi, cuts[t + 1]) << t;
+    EXPECT_EQ(other[t].lo, 99u * t / 3) << "99 items: equal shares";
+    EXPECT_EQ(wrong_size[t].lo, 100u * t / 3);
+    EXPECT_EQ(cleared[t].lo, 100u * t / 3);
+    EXPECT_EQ(cleared[t].hi, 100u * (t + 1) / 3);
+  }
+}
+
+TEST(PairLoop, EveryWaitingParticleGetsItsRecordsOnceWhicheverThreadSumsThem) {
+  // 12 particles with the neighbours below (full list, increasing); each entry's record holds
+  // (entry + 1) in all 6 values. The particles are split in equal ranges, one per thread; a particle
+  // waits when its lowest neighbour lies below its range's start, and only it gets its records.
+  const std::vector<std::vector<std::uint32_t>> neighbours = {{1},    {0, 2}, {1, 3}, {2, 4},  {3, 5},  {2, 4, 6},
+                                                               {5, 7}, {6, 8}, {7, 9}, {8, 10}, {7, 9}, {10}};
+  std::vector<std::uint32_t> start{0}, nbr;
+  for (const auto &list : neighbours) {
+    nbr.insert(nbr.end(), list.begin(), list.end());
+    start.push_back(static_cast<std::uint32_t>(nbr.size()));
+  }
+  for (int threads : {1, 2, 3, 4}) {
+    const ThreadsScope scope(threads);
+    std::vector<double> scratch(nbr.size() * 6), f(12 * 6, 0.0);
+    for (std::size_t k = 0; k < nbr.size(); ++k)
+      for (int c = 0; c < 6; ++c) scratch[k * 6 + c] = double(k + 1);
+    sm::PairList<double> list{start.data(), nbr.data(), nullptr};
+    list.scratch = scratch.data();
+    sm::Particles<double> p{};
+    p.n = 12;
+    p.fx = &f[0]; p.fy = &f[12]; p.fz = &f[24]; p.tx = &f[36]; p.ty = &f[48]; p.tz = &f[60];
+    p.team = this_thread_team();
+    std::vector<bool> waits(12, false);
+    std::vector<sm::detail::WaitingSpan> spans(threads);
+    for (int t = 0; t < threads; ++t) {  // as the pair loop finds them: up to its last waiting particle
+      const auto r = sm::team_share(12, sm::TeamSlot{t, threads});
+      spans[t] = {std::uint32_t(r.lo), std::uint32_t(r.lo)};
+      for (std::size_t i = r.lo; i < r.hi; ++i)
+        if (nbr[start[i]] < r.lo) {
+          waits[i] = true;
+          spans[t].end = std::uint32_t(i + 1);
+        }
+    }
+    sm::run_team(p.team, [&](sm::TeamSlot slot) { sm::detail::add_waiting_records(p, list, spans.data(), slot); });
+    for (std::uint32_t i = 0; i < 12; ++i) {
+      double expected = 0;
+      for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) expected += waits[i] ? double(k + 1) : 0.0;
+      for (int c = 0; c < 6; ++c) EXPECT_EQ(f[c * 12 + i], expected) << threads << " threads, particle " << i << ", value " << c;
+      for (std::uint32_t k = start[i]; k < start[i + 1]; ++k)
+        EXPECT_EQ(scratch[k * 6], waits[i] ? 0.0 : double(k + 1)) << threads << " threads: a waiting particle's records are cleared, others kept";
+    }
+    EXPECT_EQ(std::count(waits.begin(), waits.end(), true) > 0, threads > 1) << threads << " threads";
   }
 }

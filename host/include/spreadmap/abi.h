@@ -1,4 +1,4 @@
-/* spreadmap plugin ABI, version 4 (2: PairList::upper; 3: its flat upper pairs, per-entry records; 4: Particles::team). Plain C: nothing C++ crosses a shared-library boundary.
+/* spreadmap plugin ABI, version 5 (2: PairList::upper; 3: its flat upper pairs, per-entry records; 4: Particles::team; 5: TeamSlot::cuts). Plain C: nothing C++ crosses a shared-library boundary.
  * Every plugin exports exactly one symbol, `spreadmap_plugin_v1`, returning a pointer to a static
  * descriptor whose first field is the ABI number; the host checks it before touching anything else.
  * Bump SPREADMAP_PLUGIN_ABI on any change of layout in this file or in a kind's ops table. */
@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define SPREADMAP_PLUGIN_ABI 4u
+#define SPREADMAP_PLUGIN_ABI 5u
 
 #if defined(_WIN32)
 #define SM_EXPORT __declspec(dllexport)

@@ -161,6 +161,34 @@ template <class Real> void add_records(const Particles<Real> &p, const PairList<
   p.tx[i] += s[3]; p.ty[i] += s[4]; p.tz[i] += s[5];
 }
 
+// The particles of one thread's range that may wait for records: [lo, end).
+struct WaitingSpan {
+  std::uint32_t lo, end;
+};
+
+// After the barrier: the records of the particles that wait, summed by the whole team. The waiting
+// particles all lie in the ranges after the first (near their starts), so that left to their own
+// threads the last threads would sum while the first wait; here each thread takes an equal part of
+// the spans laid end to end. Which thread sums a particle changes no bit: its records are added in
+// list order either way.
+template <class Real>
+void add_waiting_records(const Particles<Real> &p, const PairList<Real> &list, const WaitingSpan *spans, TeamSlot team) {
+  std::uint64_t total = 0;
+  for (int u = 0; u < team.threads; ++u) total += spans[u].end - spans[u].lo;
+  const TeamRange mine = team_share(total, team);
+  std::uint64_t at = 0;  // position of span u's first particle in the spans laid end to end
+  for (int u = 0; u < team.threads && at < mine.hi; ++u) {
+    const WaitingSpan s = spans[u];
+    const std::uint64_t length = s.end - s.lo;
+    const std::uint64_t from = std::max<std::uint64_t>(at, mine.lo), to = std::min<std::uint64_t>(at + length, mine.hi);
+    for (std::uint64_t q = from; q < to; ++q) {
+      const auto i = static_cast<std::uint32_t>(s.lo + (q - at));
+      if (list.start[i] < list.start[i + 1] && list.nbr[list.start[i]] < s.lo) add_records(p, list, i);
+    }
+    at += length;
+  }
+}
+
 // Minimum image along one axis, the periodicity fixed at compile time and no branch taken: the
 // same bits as wrap() (d - L, d - (-L) = d + L, or d - 0 - 0 = d, for -0 too), the shifts selects.
 template <bool Periodic, class Real> Real wrap_axis(Real d, Real length) {
@@ -225,8 +253,9 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
   static_assert(Law::history == 0, "a law with history is evaluated for every entry");
   const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0;
   int threads = 1;
+  detail::WaitingSpan waiting[PairBalance::max_threads];
   run_team(p.team, [&](TeamSlot team) {
-    const auto [t, nt] = team;
+    const int t = team.thread, nt = team.threads;
     const auto began = std::chrono::steady_clock::now();
     detail::PairSweep<Real> sweep;
     detail::entry_balanced_range(list.start, p.n, t, nt, list.balance, sweep.lo, sweep.hi);
@@ -241,10 +270,16 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
       else pz ? sweep_with.template operator()<false, false, true>() : sweep_with.template operator()<false, false, false>();
     }
     const auto swept = std::chrono::steady_clock::now();
+    const bool shared = nt <= PairBalance::max_threads;
+    if (shared) waiting[t] = {sweep.lo, std::max(sweep.lo, sweep.waiting_end)};
     team_barrier(p.team);
     const auto summing = std::chrono::steady_clock::now();
-    for (std::uint32_t i = sweep.lo; i < sweep.hi; ++i)
-      if (sweep.waits(list, i)) detail::add_records(p, list, i);
+    if (shared) {
+      detail::add_waiting_records(p, list, waiting, team);
+    } else {
+      for (std::uint32_t i = sweep.lo; i < sweep.hi; ++i)
+        if (sweep.waits(list, i)) detail::add_records(p, list, i);
+    }
     // the thread's work, without its wait at the barrier
     if (list.balance && t < PairBalance::max_threads)
       list.balance->seconds[t] = std::chrono::duration<double>(swept - began + (std::chrono::steady_clock::now() - summing)).count();

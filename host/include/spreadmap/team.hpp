@@ -12,8 +12,14 @@
 
 namespace spreadmap {
 
+// A thread's place in a run. cuts, when not null: how the host wants a loop over cuts_for items split
+// (thread t takes [cuts[t], cuts[t + 1])). The host sets them to its particles' owners in a step, the
+// threads that evaluate their pairs, so that every loop over the particles leaves a particle's data
+// in one core's cache; team_share follows them.
 struct TeamSlot {
   int thread = 0, threads = 1;
+  const std::size_t *cuts = nullptr;
+  std::size_t cuts_for = 0;
 };
 
 // A team of threads that runs a body once on each of its threads. Plain function pointers: it crosses
@@ -34,11 +40,13 @@ inline int max_team_size() {
 #endif
 }
 
-// Thread `team`'s share [lo, hi) of n items: contiguous ranges of equal size, in thread order.
+// Thread `team`'s share [lo, hi) of n items: contiguous ranges in thread order, the host's cuts when
+// they are for n items, else of equal size.
 struct TeamRange {
   std::size_t lo, hi;
 };
 inline TeamRange team_share(std::size_t n, TeamSlot team) {
+  if (team.cuts && n == team.cuts_for) return {team.cuts[team.thread], team.cuts[team.thread + 1]};
   return {n * std::size_t(team.thread) / std::size_t(team.threads),
           n * std::size_t(team.thread + 1) / std::size_t(team.threads)};
 }
