@@ -79,6 +79,11 @@ inline void retune(PairBalance &b, int nt) {
   b.cut[nt] = 1;
 }
 
+// Particle i's lowest neighbour lies below `lo` (the start of a thread's range): i waits for records.
+template <class Real> bool neighbour_below(const PairList<Real> &list, std::uint32_t i, std::uint32_t lo) {
+  return list.start[i] < list.start[i + 1] && list.nbr[list.start[i]] < lo;
+}
+
 // One thread's share of the loop: its range, and where its running sums live.
 template <class Real> struct PairSweep {
   std::uint32_t lo, hi;
@@ -95,10 +100,7 @@ template <class Real> struct PairSweep {
     if (lo > 0)
       for (std::uint32_t i = lo; i < hi; ++i) waiting_end = below_lo(list, i) ? i + 1 : waiting_end;
   }
-  // Particle i's lowest neighbour lies below this range.
-  bool below_lo(const PairList<Real> &list, std::uint32_t i) const {
-    return list.start[i] < list.start[i + 1] && list.nbr[list.start[i]] < lo;
-  }
+  bool below_lo(const PairList<Real> &list, std::uint32_t i) const { return neighbour_below(list, i, lo); }
   // Adds contribution (f, t) of entry k (k_of() gives it; only records need it) to particle i: to its
   // running sum when the sweep keeps its order, else as the entry's record.
   template <class EntryOf>
@@ -183,7 +185,7 @@ void add_waiting_records(const Particles<Real> &p, const PairList<Real> &list, c
     const std::uint64_t from = std::max<std::uint64_t>(at, mine.lo), to = std::min<std::uint64_t>(at + length, mine.hi);
     for (std::uint64_t q = from; q < to; ++q) {
       const auto i = static_cast<std::uint32_t>(s.lo + (q - at));
-      if (list.start[i] < list.start[i + 1] && list.nbr[list.start[i]] < s.lo) add_records(p, list, i);
+      if (neighbour_below(list, i, s.lo)) add_records(p, list, i);
     }
     at += length;
   }
