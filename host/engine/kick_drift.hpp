@@ -5,6 +5,8 @@
 // First: w += dt/2 T/I (when rotating); v += dt/2 (F/m + g); F = T = 0 (the accumulators are used
 // up); x += dt v, wrapped along periodic axes; the largest squared displacement since the list
 // build. Second (after the forces): the same kick, and a count of particles too fast or not finite.
+// The engine runs a step's second kick in the next step's pass (kick_check_drift): both kicks, the
+// check and the drift, particle by particle.
 #pragma once
 #include <spreadmap/hd.hpp>
 #include <spreadmap/simd.hpp>
@@ -96,32 +98,46 @@ template <class Real, bool PX, bool PY, bool PZ> SM_HD Drifted<Real> drift(const
 
 // Is particle i (after its second half kick) faster than sqrt(limit2), or is its velocity or spin
 // not finite?
-template <class Real> SM_HD std::uint32_t too_fast(const KickDrift<Real> &k, Real limit2, long long i) {
-  const Real v2 = k.vx[i] * k.vx[i] + k.vy[i] * k.vy[i] + k.vz[i] * k.vz[i];
-  const Real w2 = k.wx[i] * k.wx[i] + k.wy[i] * k.wy[i] + k.wz[i] * k.wz[i];
+template <class Real>
+SM_HD std::uint32_t too_fast(Real vx, Real vy, Real vz, Real wx, Real wy, Real wz, Real limit2) {
+  const Real v2 = vx * vx + vy * vy + vz * vz;
+  const Real w2 = wx * wx + wy * wy + wz * wz;
   return (!(v2 <= limit2) | !((w2 - w2) == 0)) ? 1u : 0u;  // NaN fails the comparison; inf - inf is NaN
 }
+template <class Real> SM_HD std::uint32_t too_fast(const KickDrift<Real> &k, Real limit2, long long i) {
+  return too_fast(k.vx[i], k.vy[i], k.vz[i], k.wx[i], k.wy[i], k.wz[i], limit2);
+}
 
-template <class Real, bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>
-void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
-  // The largest d2 >= 0 as the largest bit pattern (the same order for non-negative floats): an
-  // integer maximum vectorises, a floating one that must keep NaN's semantics does not.
+// What a loop's drifts report, summed over its particles. The largest d2 >= 0 is kept as the largest
+// bit pattern (the same order for non-negative floats): an integer maximum vectorises, a floating
+// one that must keep NaN's semantics does not.
+template <class Real> struct DriftTally {
   using Bits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
   std::uint32_t escaped = 0, nonfinite = 0;
   Bits largest_bits = 0;
-#pragma GCC ivdep
-  for (long long i = begin; i < end; ++i) {
-    half_kick<Real, Rotate, Sleep>(k, i);
-    const Drifted<Real> d = drift<Real, PX, PY, PZ>(k, i);
+  void add(const Drifted<Real> &d) {
     nonfinite += d.nonfinite;
     escaped += d.escaped;
     const Bits b = std::bit_cast<Bits>(d.d2);
     largest_bits = largest_bits > b ? largest_bits : b;
   }
-  const Real largest = std::bit_cast<Real>(largest_bits);
-  result.escaped += escaped;
-  result.nonfinite += nonfinite;
-  result.largest = result.largest > largest ? result.largest : largest;
+  void add_to(KickDriftResult<Real> &result) const {
+    const Real largest = std::bit_cast<Real>(largest_bits);
+    result.escaped += escaped;
+    result.nonfinite += nonfinite;
+    result.largest = result.largest > largest ? result.largest : largest;
+  }
+};
+
+template <class Real, bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>
+void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
+  DriftTally<Real> tally;
+#pragma GCC ivdep
+  for (long long i = begin; i < end; ++i) {
+    half_kick<Real, Rotate, Sleep>(k, i);
+    tally.add(drift<Real, PX, PY, PZ>(k, i));
+  }
+  tally.add_to(result);
 }
 
 template <class Real, bool Rotate, bool Sleep>
@@ -132,6 +148,38 @@ std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long 
     half_kick<Real, Rotate, Sleep>(k, i);
     bad += too_fast(k, limit2, i);
   }
+  return bad;
+}
+
+// The second half kick of one step and the first of the next in one pass: each particle is kicked,
+// checked and kicked again in registers, as half_kick and too_fast do it (the same operations: the
+// same bits), then drifted; its velocities and forces are read from memory once instead of twice.
+// No particle sleeps (a sleeping scene reads the velocities between the kicks).
+template <class Real, bool PX, bool PY, bool PZ, bool Rotate>
+std::uint32_t kick_check_drift_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end,
+                                     KickDriftResult<Real> &result) {
+  DriftTally<Real> tally;
+  std::uint32_t bad = 0;
+  const Real h = k.half_dt;
+#pragma GCC ivdep
+  for (long long i = begin; i < end; ++i) {
+    const Real ax = k.fx[i] * k.inv_m[i] + k.g[0], ay = k.fy[i] * k.inv_m[i] + k.g[1],
+               az = k.fz[i] * k.inv_m[i] + k.g[2];
+    Real vx = k.vx[i] + h * ax, vy = k.vy[i] + h * ay, vz = k.vz[i] + h * az;
+    Real wx = k.wx[i], wy = k.wy[i], wz = k.wz[i];
+    Real bx = 0, by = 0, bz = 0;  // angular acceleration
+    if constexpr (Rotate) {
+      bx = k.tx[i] * k.inv_i[i]; by = k.ty[i] * k.inv_i[i]; bz = k.tz[i] * k.inv_i[i];
+      wx = wx + h * bx; wy = wy + h * by; wz = wz + h * bz;
+    }
+    bad += too_fast(vx, vy, vz, wx, wy, wz, limit2);
+    k.vx[i] = vx + h * ax; k.vy[i] = vy + h * ay; k.vz[i] = vz + h * az;
+    if constexpr (Rotate) {
+      k.wx[i] = wx + h * bx; k.wy[i] = wy + h * by; k.wz[i] = wz + h * bz;
+    }
+    tally.add(drift<Real, PX, PY, PZ>(k, i));
+  }
+  tally.add_to(result);
   return bad;
 }
 }  // namespace detail
@@ -162,6 +210,21 @@ void kick_drift(const KickDrift<Real> &k, long long begin, long long end, KickDr
   with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>() {
     with_simd([&] { detail::kick_drift_range<Real, PX, PY, PZ, Rotate, Sleep>(k, begin, end, result); });
   }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate, k.sleeping);
+}
+
+// The last step's second half kick and check, then this step's first half kick and drift, of
+// particles [begin, end) in one pass; adds to `result` and returns the count kick_check would. For
+// scenes where no particle sleeps (k.sleeping false).
+template <class Real>
+std::uint32_t kick_check_drift(const KickDrift<Real> &k, Real limit2, long long begin, long long end,
+                               KickDriftResult<Real> &result) {
+  std::uint32_t bad = 0;
+  with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate>() {
+    with_simd([&] {
+      bad = detail::kick_check_drift_range<Real, PX, PY, PZ, Rotate>(k, limit2, begin, end, result);
+    });
+  }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
+  return bad;
 }
 
 }  // namespace spreadmap::engine

@@ -623,27 +623,37 @@ template <class Real> KickDrift<Real> Simulation<Real>::integration(Real half_dt
   return k;
 }
 
-// First half kick (rotation too) and drift in one pass over memory; the force and torque
-// accumulators are cleared once used, so the next evaluation needs no pass of its own. Counts the
-// particles outside open axes and the non-finite ones; returns true when the list must be rebuilt:
-// some particle moved by half the skin since the last build (LAMMPS' and LIGGGHTS' criterion).
+// First half kick (rotation too) and drift in one pass over memory, preceded in the same pass by
+// the last step's second half kick and check when it is pending; the force and torque accumulators
+// are cleared once used, so the next evaluation needs no pass of its own. Counts the particles
+// outside open axes and the non-finite ones; returns true when the list must be rebuilt: some
+// particle moved by half the skin since the last build (LAMMPS' and LIGGGHTS' criterion).
 template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real dt) {
   const std::size_t n = p_.size();
   const KickDrift<Real> k = integration(half_dt, dt);
-  std::uint32_t escaped = 0, nonfinite = 0;
+  const bool second_kick = second_kick_pending_;
+  second_kick_pending_ = false;
+  const Real limit2 = Real(speed_limit_ * speed_limit_);
+  std::uint32_t escaped = 0, nonfinite = 0, bad = 0;
   Real largest = 0;
   run_team(this_thread_team(), [&](TeamSlot team) {
     KickDriftResult<Real> mine;
+    std::uint32_t mine_bad = 0;
     const auto [lo, hi] = team_share(n, team);
-    kick_drift(k, lo, hi, mine);
+    if (second_kick) mine_bad = kick_check_drift(k, limit2, lo, hi, mine);
+    else kick_drift(k, lo, hi, mine);
 #pragma omp critical(spreadmap_kick_drift)
     {
+      bad += mine_bad;
       escaped += mine.escaped;
       nonfinite += mine.nonfinite;
       largest = largest > mine.largest ? largest : mine.largest;
     }
   });
   forces_zeroed_ = true;
+  // the last step ended in a bad state (time and step are still its own; the velocities shown are
+  // half a kick on)
+  if (bad > 0) report_bad_particle();
   if (nonfinite > 0) {
     time_ += dt_;  // report the step being taken
     ++step_;
@@ -790,6 +800,11 @@ template <class Real> void Simulation<Real>::set_backend(std::unique_ptr<StepBac
 }
 
 template <class Real> void Simulation<Real>::sync_host() const {
+  if (second_kick_pending_) {
+    auto &self = const_cast<Simulation &>(*this);  // completes the step whose state is read
+    self.second_kick_pending_ = false;
+    self.kick_and_check(Real(0.5 * dt_));
+  }
   if (!backend_ || !device_ahead_) return;
   device_ahead_ = false;  // first: download() reads the host copy's sizes through the accessors
   backend_->download(const_cast<Simulation &>(*this));
@@ -829,7 +844,11 @@ template <class Real> void Simulation<Real>::step() {
     share_like_pairs();
   }
   compute_forces();
-  kick_and_check(half);
+  // The second half kick waits for the next step's first, which runs it in the same pass
+  // (kick_and_drift), unless the state is read or changed before (sync_host). Sleeping reads the
+  // velocities now.
+  if (settings_.sleep) kick_and_check(half);
+  else second_kick_pending_ = true;
   if (step_ % settings_.check_every == 0) check_overlaps();
   ++counters_.steps;
   counters_.particle_steps += double(p_.size());

@@ -114,8 +114,8 @@ template <class Real = double> class Simulation {
 
  private:
   friend struct StepAccess<Real>;
-  // With a backend: the host copy is brought up to date before it is read, and marked changed
-  // (to be uploaded) before it is written.
+  // The host copy is brought up to date before it is read (the pending second half kick run; with a
+  // backend, the state downloaded), and marked changed (to be uploaded) before it is written.
   void sync_host() const;
   void host_changes();
 
@@ -195,6 +195,9 @@ template <class Real = double> class Simulation {
   bool list_valid_ = false;
   bool forces_valid_ = false;
   bool forces_zeroed_ = false;  // kick_and_drift cleared the accumulators after using them
+  // The last step's second half kick is still to run: the next kick_and_drift runs it in its pass,
+  // sync_host before anything reads or changes the state.
+  bool second_kick_pending_ = false;
   std::uint32_t next_id_ = 0;
   RunCounters counters_;
   // Sleeping: where particles may fall asleep, how many are, and the awake particles listed with a
