@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -33,6 +34,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <thread>
 #include <time.h>
 #include <unistd.h>
@@ -245,6 +247,13 @@ int main(int argc, char **argv) {
   std::printf("\nload average at the end %s\n", load_average().c_str());
   std::printf("end states of all %d runs bitwise identical (any thread count): %s\n",
               int(opt.threads.size()) * opt.repeats, identical ? "yes" : "NO");
+  // FNV-1a of the first run's end state: the same heap and steps on another commit should print the same
+  std::uint64_t digest = 1469598103934665603ull;
+  for (const unsigned char byte : std::string_view(reinterpret_cast<const char *>(reference.data()),
+                                                    reference.size() * sizeof(double)))
+    digest = (digest ^ byte) * 1099511628211ull;
+  std::printf("end state digest (FNV-1a of positions and velocities by id): %016llx\n",
+              static_cast<unsigned long long>(digest));
   std::printf("\n%-28s %16s %12s %12s\n", "", "particle-steps/s", "speed-up", "x LIGGGHTS");
   std::vector<double> med(opt.threads.size());
   for (std::size_t k = 0; k < opt.threads.size(); ++k) {
