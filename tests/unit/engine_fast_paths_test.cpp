@@ -133,6 +133,17 @@ TEST(EnginePairsOnce, SameBitsAsEveryEntryForAnyThreadCount) {
   EXPECT_TRUE(same_state(*one, *three)) << "1 vs 3 threads differ";
 }
 
+// A team larger than PairBalance::max_threads: the pair loop splits the entries equally and each
+// thread sums its own waiting particles' records (the branch no tuned team takes). About 20
+// particles a thread, so most of them wait for records.
+TEST(EnginePairsOnce, SameBitsOnATeamLargerThanTheBalanceTunes) {
+  Scene scene;
+  const int many = sm::PairBalance::max_threads + 3;
+  auto run = [&](int threads) { return scene.run(&Settings::pairs_once, true, threads, 150); };
+  const auto one = run(1), crowd = run(many);
+  EXPECT_TRUE(same_state(*one, *crowd)) << "1 vs " << many << " threads differ";
+}
+
 // The pair and wall queues, the kicks and the plane overlaps compiled for plain x86-64, AVX2 and
 // AVX-512 (those the processor runs): the same IEEE operations in the same order on any lane width.
 TEST(EngineSimd, EveryInstructionSetGivesTheSameBits) {
