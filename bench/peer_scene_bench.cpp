@@ -26,7 +26,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -34,12 +33,12 @@
 #include <fstream>
 #include <memory>
 #include <string>
-#include <string_view>
 #include <thread>
 #include <time.h>
 #include <unistd.h>
 #include <vector>
 
+#include "core/files.hpp"
 #include "core/registry.hpp"
 #include <spreadmap/simd.hpp>
 #include "engine/vtp_io.hpp"
@@ -247,13 +246,10 @@ int main(int argc, char **argv) {
   std::printf("\nload average at the end %s\n", load_average().c_str());
   std::printf("end states of all %d runs bitwise identical (any thread count): %s\n",
               int(opt.threads.size()) * opt.repeats, identical ? "yes" : "NO");
-  // FNV-1a of the first run's end state: the same heap and steps on another commit should print the same
-  std::uint64_t digest = 1469598103934665603ull;
-  for (const unsigned char byte : std::string_view(reinterpret_cast<const char *>(reference.data()),
-                                                    reference.size() * sizeof(double)))
-    digest = (digest ^ byte) * 1099511628211ull;
-  std::printf("end state digest (FNV-1a of positions and velocities by id): %016llx\n",
-              static_cast<unsigned long long>(digest));
+  // the first run's end state hashed: the same heap and steps on another commit should print the same
+  const std::string end_bytes(reinterpret_cast<const char *>(reference.data()), reference.size() * sizeof(double));
+  std::printf("end state digest (stable_hash of positions and velocities by id): %s\n",
+              sm::stable_hash(end_bytes).c_str());
   std::printf("\n%-28s %16s %12s %12s\n", "", "particle-steps/s", "speed-up", "x LIGGGHTS");
   std::vector<double> med(opt.threads.size());
   for (std::size_t k = 0; k < opt.threads.size(); ++k) {

@@ -12,6 +12,7 @@
 #include <spreadmap/simd.hpp>
 
 #include <bit>
+#include <cassert>
 #include <cstdint>
 #include <type_traits>
 
@@ -218,6 +219,7 @@ void kick_drift(const KickDrift<Real> &k, long long begin, long long end, KickDr
 template <class Real>
 std::uint32_t kick_check_drift(const KickDrift<Real> &k, Real limit2, long long begin, long long end,
                                KickDriftResult<Real> &result) {
+  assert(!k.sleeping && "a sleeping scene kicks in two passes");
   std::uint32_t bad = 0;
   with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate>() {
     with_simd([&] {

@@ -226,13 +226,15 @@ TEST(EngineDeterminism, FloatIsBitwiseIdenticalForOneAndTwoThreads) {
 
 // A step leaves its second half kick to the next step's pass (Simulation::kick_and_drift), and a
 // read of the state runs it first: reading the state after every step (two passes a step) or only
-// now and then (one pass) gives the same bits, and what is read is the completed step.
+// now and then (one pass) gives the same bits. That what is read is the completed step is checked
+// against runs that never defer the kick (sleeping scenes: EngineSleep.WhereNoneMaySleepNoBitChanges)
+// and by a resume from a checkpoint (EngineCheckpoint.ResumeIsBitwiseIdentical).
 TEST(EngineDeterminism, ReadingTheStateBetweenStepsChangesNoBit) {
   Scene<double> scene;
   auto read_every_step = scene.make(), read_rarely = scene.make();
   for (int s = 0; s < 400; ++s) {
     read_every_step.run_steps(1);
-    EXPECT_TRUE(std::isfinite(read_every_step.arrays().vz[0]));
+    EXPECT_TRUE(std::isfinite(read_every_step.arrays().vz[0]));  // the read runs the pending kick
     read_rarely.run_steps(1);
     if (s == 199) EXPECT_TRUE(same_state(read_every_step, read_rarely)) << "the states read half way differ";
   }

@@ -6,12 +6,12 @@
 
 #include <algorithm>
 #include <bit>
-#include <cstdint>
-#include <type_traits>
 #include <cmath>
+#include <cstdint>
 #include <gtest/gtest.h>
 #include <limits>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 namespace sm = spreadmap;
