@@ -105,7 +105,7 @@ template <class Real> void run(std::uint32_t n, int steps) {
   // CPU: the same three calls through the plugins' CPU tables.
   const auto *pair_cpu = scene.pair_law.ops<sm::sm_contact_ops_v1>();
   const auto *wall_cpu = scene.wall_law.ops<sm::sm_contact_ops_v1>();
-  const auto *roller_cpu = scene.roller.ops<sm::sm_geometry_ops_v1>();
+  const auto *roller_cpu = scene.roller.ops<sm::sm_spreader_ops_v2>();
   const int cpu_steps = std::max(3, int(std::min<double>(steps, 2e7 / n)));
   auto p = k.particles();
   auto l = k.pairs();

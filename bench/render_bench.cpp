@@ -33,7 +33,14 @@ int main(int argc, char** argv) {
     s.r.push_back(0.5 * d);
     s.speed.push_back(0.1 * uniform() * z / 0.02);
   }
-  s.spreader = {"cylinder", {0.075, 0.00125, 0.0055}, 0.005, 0.07, 0, 0, 1.0};
+  for (int k = 0; k < 72; ++k) {  // a 10 mm roller's disc, turned by 1 rad
+    s.spreader.outline_x.push_back(0.005 * std::cos(2 * 3.14159265358979 * k / 72));
+    s.spreader.outline_z.push_back(0.005 * std::sin(2 * 3.14159265358979 * k / 72));
+  }
+  s.spreader.reference = {0.075, 0.00125, 0.0055};
+  s.spreader.length = 0.07;
+  s.spreader.turns = true;
+  s.spreader.angle = 1.0;
   r::Options o;
   o.width = 1920;
   o.height = 1080;

@@ -115,10 +115,10 @@ Outcome spread(const nlohmann::json &scene, sm::PluginRegistry &registry, const 
     sim.add_plane_wall({{0, 0, h + 1e-3}, {0, 0, -1}, {0, 0, 0}, law, true, "ceiling"});
     sim.add_plane_wall({{-1e-3, 0, 0}, {1, 0, 0}, {0, 0, 0}, law, true, "back wall"});
   }
-  const auto *ops = run->spreader_ops();
-  const double duration = ops->duration(run->plugins.spreader.get()) + scene["time"]["relax"].get<double>();
+  const auto spreader = run->plugins.spreader_description();
+  const double duration = spreader.duration + scene["time"]["relax"].get<double>();
   const auto t0 = std::chrono::steady_clock::now();
-  sm::run_spreading(sim, *ops, run->plugins.spreader.get(), scene, duration);
+  sm::run_spreading(sim, run->plugins, scene, duration);
   Outcome o;
   o.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto &c = sim.counters();
@@ -126,10 +126,9 @@ Outcome spread(const nlohmann::json &scene, sm::PluginRegistry &registry, const 
   o.asleep_at_end = sim.sleeping_count();
   const sm::engine::ParticleSet s = sim.state();
   sm::LayerRequest rq;
-  rq.region = sm::default_region(scene);
+  rq.region = sm::default_region(scene, spreader);
   rq.periodic_y = std::make_pair(0.0, scene["domain"]["width"].get<double>());
-  rq.speed = scene["spreader"]["params"]["U"];
-  rq.gap = scene["spreader"]["params"]["gap"];
+  sm::take_spreader(rq, spreader);
   {
     sm::Diagnostics diag;  // the layer plugin's defaults (cell d/5), as the characterise stage uses them
     rq.params = sm::validate_params(sm::SchemaView::of(*registry.get("metrics", "layer").descriptor), YAML::Node(),

@@ -11,15 +11,15 @@
 
 namespace spreadmap::cluster {
 
-std::string heap_key(const CaseJob &job);
+std::string heap_key(const CaseJob &job, PluginRegistry &registry);
 // True once the case's settled heap is on disk (it is then only read).
-bool heap_ready(const CaseJob &job);
+bool heap_ready(const CaseJob &job, PluginRegistry &registry);
 
 // The jobs split in two, design order kept: `first` holds one case for each heap that is not on
 // disk yet (it settles it), `rest` the others (they can all run at once once `first` is done).
 struct HeapOrder {
   std::vector<std::size_t> first, rest;  // design indices
 };
-HeapOrder order_by_heap(const std::vector<CaseJob> &jobs);
+HeapOrder order_by_heap(const std::vector<CaseJob> &jobs, PluginRegistry &registry);
 
 }  // namespace spreadmap::cluster

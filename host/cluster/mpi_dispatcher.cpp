@@ -60,9 +60,9 @@ void MpiDispatcher::hand_out(CaseBatch &batch, StageContext &ctx) {
   auto next_for_worker = [&]() -> std::optional<std::size_t> {
     for (auto it = pending.begin(); it != pending.end(); ++it) {
       const CaseJob &job = batch.jobs[*it];
-      const std::string key = heap_key(job);
-      if (settling.count(key) && !heap_ready(job)) continue;
-      if (!heap_ready(job)) settling.insert(key);
+      const std::string key = heap_key(job, ctx.registry);
+      if (settling.count(key) && !heap_ready(job, ctx.registry)) continue;
+      if (!heap_ready(job, ctx.registry)) settling.insert(key);
       const std::size_t k = *it;
       pending.erase(it);
       return k;
@@ -102,7 +102,7 @@ void MpiDispatcher::hand_out(CaseBatch &batch, StageContext &ctx) {
     const CaseOutcome o = outcome_from_json(nlohmann::json::parse(message->text));
     const auto r = running.find(message->source);
     if (r == running.end()) continue;
-    settling.erase(heap_key(batch.jobs[r->second]));
+    settling.erase(heap_key(batch.jobs[r->second], ctx.registry));
     running.erase(r);
     if (!o.ok) {
       spdlog::error("{}{}: {}", o.id, on_rank(o), o.error);

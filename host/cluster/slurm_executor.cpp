@@ -72,7 +72,7 @@ void SlurmExecutor::run_cases(CaseBatch &batch, StageContext &ctx) {
   const int scene_threads = ctx.scene.value("threads", 0);
   plan.threads = threads_ > 0 ? threads_ : scene_threads > 0 ? scene_threads : 1;
   plan.force = ctx.options.force;
-  const HeapOrder order = order_by_heap(batch.jobs);
+  const HeapOrder order = order_by_heap(batch.jobs, ctx.registry);
   plan.heap_cases = order.first;
   plan.other_cases = order.rest;
   plan_stages(plan, ctx.options, ctx.wf);

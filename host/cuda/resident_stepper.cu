@@ -545,7 +545,9 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     auto &geometries = Access::geometries(sim);
     for (std::size_t k = 0; k < geometries.size(); ++k, ++s) {
       const WallContacts<Real> w = slots_[s].view(n_);
-      launch_geometry(laws_.geometries.at(k).first, geometries[k].geometry.self, v, w, device_);
+      Particles<Real> at = v;  // the geometry's own clock (engine/walls.hpp)
+      at.t = Real(Access::time(sim) + geometries[k].geometry.time_shift);
+      launch_geometry(laws_.geometries.at(k).first, geometries[k].geometry.self, at, w, device_);
       launch_walls(laws_.geometries.at(k).second, geometries[k].geometry.law.self, v, w, device_);
     }
     ok(cudaGetLastError(), "the contact forces");

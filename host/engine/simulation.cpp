@@ -550,6 +550,7 @@ template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot &ge
   parallel_for(this_thread_team(), n, [&](long long i) { inflated_radius_[i] = p_.r[i] + margin; });
   Particles<Real> v = view();
   v.r = inflated_radius_.data();
+  v.t = Real(time_ + ge.geometry.time_shift);
   WallContacts<Real> w = ge.slot.view(n);
   if constexpr (std::is_same_v<Real, double>) ops->contacts_f64(ge.geometry.self, &v, &w);
   else ops->contacts_f32(ge.geometry.self, &v, &w);
@@ -573,11 +574,13 @@ template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot &ge, c
   const auto *ops = ge.geometry.ops;
   const ContactLaw &law = ge.geometry.law;
   auto evaluate = [&](const Particles<Real> &pv, WallContacts<Real> &w) {
+    Particles<Real> at = pv;  // the geometry's own clock
+    at.t = Real(time_ + ge.geometry.time_shift);
     if constexpr (std::is_same_v<Real, double>) {
-      ops->contacts_f64(ge.geometry.self, &pv, &w);
+      ops->contacts_f64(ge.geometry.self, &at, &w);
       law.ops->walls_f64(law.self, &pv, &w);
     } else {
-      ops->contacts_f32(ge.geometry.self, &pv, &w);
+      ops->contacts_f32(ge.geometry.self, &at, &w);
       law.ops->walls_f32(law.self, &pv, &w);
     }
   };

@@ -50,12 +50,15 @@ std::uint32_t plane_overlaps(const Real p[3], const Real n[3], const Real *x, co
   return touching;
 }
 
-// A geometry plugin (spreader, substrate shape) producing wall contacts each step.
+// A geometry plugin (spreader, substrate shape) producing wall contacts each step. It sees the
+// simulation's time plus time_shift: a spreader rests for t < 0, so a heap settles beside one
+// shifted far enough back.
 struct GeometryWall {
-  const sm_geometry_ops_v1 *ops = nullptr;
+  const sm_spreader_ops_v2 *ops = nullptr;
   const void *self = nullptr;
   ContactLaw law;
-  std::string name = "geometry";            // for messages, e.g. "spreader/roller"
+  std::string name = "geometry";            // for messages: the plugin's kind/name
+  double time_shift = 0;                    // [s]
 };
 
 }  // namespace spreadmap::engine

@@ -6,7 +6,7 @@
 // insertion O(N)). Every sphere lies entirely inside the region, except along a periodic y where
 // centres fill [y0, y1) and overlaps use the minimum image. Exclusion shapes are tested at the
 // centre as drawn in [y0, y1), without periodic images (give shapes that span the strip, as a
-// roller does, or that lie well inside it).
+// spreader spanning a periodic strip does, or that lie well inside it).
 //
 // When a sphere fails `attempts_per_sphere` consecutive tries the region is considered full: the
 // top z1 is raised by one largest diameter (the base and the sides never move) and the sphere is
@@ -31,7 +31,7 @@ struct Box {
 };
 
 // A solid cylinder with its axis along y at (x, z), spanning y in [y_lo, y_hi] (unbounded by
-// default), e.g. the roller plus a clearance.
+// default), e.g. a cylindrical body plus a clearance.
 struct CylinderY {
   double x, z, radius;
   double y_lo = -std::numeric_limits<double>::infinity(), y_hi = std::numeric_limits<double>::infinity();

@@ -7,6 +7,7 @@
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "core/stop.hpp"
+#include "workflow/case_setup.hpp"
 #include "workflow/figures.hpp"
 
 namespace spreadmap {
@@ -18,7 +19,7 @@ nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool rende
     write_atomic(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry).dump(2) + "\n");  // as the engine runs it
     const std::string start = RunDirectory::now_iso();
     const auto t0 = std::chrono::steady_clock::now();
-    run_case(req, ctx.registry);
+    const nlohmann::json record = run_case(req, ctx.registry);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ctx.run.update_manifest([&](nlohmann::json &m) {
       if (!m.contains("cases")) m["cases"] = nlohmann::json::array();
@@ -32,7 +33,7 @@ nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool rende
                        {"end", RunDirectory::now_iso()}, {"wall_seconds", wall}, {"status", "done"}});
     });
     if (render)
-      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, req.dir / "snapshot.png",
+      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, record, req.dir / "snapshot.png",
                         figures::case_title(req.id, req.inputs));
     ran = true;
   } else {
@@ -53,10 +54,10 @@ LayerResult measure_case_layer(PluginRegistry &registry, const nlohmann::json &s
   LayerRequest lr;
   lr.params = validate_params(SchemaView::of(*layer.descriptor), YAML::Node(), "<defaults>", "metrics/layer", diag);
   diag.throw_if_any();
-  lr.region = default_region(scene);
+  const auto spreader = describe_spreader(scene, registry, dir / "scene.json");
+  lr.region = default_region(scene, spreader);
   if (scene["domain"]["periodic_y"].get<bool>()) lr.periodic_y = std::make_pair(0.0, scene["domain"]["width"].get<double>());
-  lr.speed = scene["spreader"]["params"].value("U", std::nan(""));
-  lr.gap = scene["spreader"]["params"].value("gap", std::nan(""));
+  take_spreader(lr, spreader);
   return characterise_layer(registry, lr, read_particle_file(dir / "state.vtp"));
 }
 

@@ -32,7 +32,7 @@ std::map<std::string, std::shared_ptr<std::mutex>> heap_locks;
 
 template <class Real>
 ParticleSet settled_heap(const nlohmann::json &scene, PluginRegistry &reg, const CaseRequest &req) {
-  const std::string key = heap_hash(scene);
+  const std::string key = heap_hash(scene, reg);
   std::shared_ptr<std::mutex> lock;
   {
     std::lock_guard<std::mutex> g(heap_mutex);
@@ -59,7 +59,6 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   const auto run = make_spreading_run<Real>(scene, reg, heap, req.dir / "scene.json");
   auto &sim = run->sim;
   const auto &plugins = run->plugins;
-  const auto *gops = run->spreader_ops();
 
   const fs::path checkpoint = req.dir / "checkpoint.bin";
   const std::string hash = case_hash(scene);
@@ -78,7 +77,8 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
       return spread<Real>(req, reg);
     }
   }
-  const double duration = gops->duration(plugins.spreader.get()) + scene["time"]["relax"].get<double>();
+  const auto spreader = plugins.spreader_description();
+  const double duration = spreader.duration + scene["time"]["relax"].get<double>();
   const double interval = scene["time"]["checkpoint_interval"];
   const int snapshots = scene["time"]["snapshots"];
   auto last_checkpoint = std::chrono::steady_clock::now();
@@ -90,11 +90,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   };
   std::vector<engine::SeriesEntry> series;
   nlohmann::json series_record = nlohmann::json::array();  // with the spreader's pose, for frames
-  auto pose_at = [&](double t) {
-    sm_pose_v1 pose{};
-    gops->pose(plugins.spreader.get(), t, &pose);
-    return nlohmann::json{{"x", pose.centre[0]}, {"z", pose.centre[2]}, {"radius", pose.radius}, {"angle", pose.angle}};
-  };
+  auto pose_at = [&](double t) { return to_json(plugins.spreader_pose(t)); };
   int next_snapshot = 1;
   // resumed: the snapshots written before the checkpoint stay in the series (their time is in the file)
   while (snapshots > 0 && next_snapshot <= snapshots && sim.time() >= duration * next_snapshot / (snapshots + 1)) {
@@ -107,7 +103,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
     ++next_snapshot;
   }
   // one snapshot time per interval; callbacks every 100 steps are cheap against the step cost
-  bool ok = run_spreading(sim, *gops, plugins.spreader.get(), scene, duration, [&](const engine::Simulation<Real> &s) {
+  bool ok = run_spreading(sim, plugins, scene, duration, [&](const engine::Simulation<Real> &s) {
     const auto now = std::chrono::steady_clock::now();
     if (req.progress) req.progress(0.1 + 0.9 * s.time() / duration, "");
     if (next_snapshot <= snapshots && s.time() >= duration * next_snapshot / (snapshots + 1)) {
@@ -147,6 +143,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
       {"particle_steps_per_second", c.particle_steps_per_second()}, {"list_builds", c.list_builds},
       {"steps_this_run", double(sim.step_count()) - steps_before}, {"rotation_integrated", sim.rotation_integrated()},
       {"precision", scene["precision"]},
+      {"spreader", to_json(spreader)},
       {"spreader_end", pose_at(sim.time())},
   };
   if (!series_record.empty()) out["series"] = series_record;
@@ -171,12 +168,16 @@ std::string case_hash(const nlohmann::json &scene) {
   return stable_hash(s.dump());
 }
 
-std::string heap_hash(const nlohmann::json &scene) {
+std::string heap_hash(const nlohmann::json &scene, PluginRegistry &registry) {
   nlohmann::json s = {{"powder", scene["powder"]}, {"domain", scene["domain"]}, {"contact", scene["contact"]},
-                      {"substrate", scene["substrate"]}, {"spreader", scene["spreader"]}, {"gravity", scene["gravity"]},
+                      {"substrate", scene["substrate"]}, {"gravity", scene["gravity"]},
                       {"precision", scene["precision"]}, {"time", scene["time"]}};
-  for (const char *k : {"U", "omega", "travel", "end"}) s["spreader"]["params"].erase(k);
   for (const char *k : {"relax", "checkpoint_interval", "snapshots"}) s["time"].erase(k);
+  // The spreader as the heap sees it: its law and its body at rest, as it describes itself (its
+  // motion, e.g. a speed or a rotation, does not change the heap).
+  nlohmann::json body = to_json(describe_spreader(scene, registry, "scene.json"));
+  for (const char *k : {"end", "speed", "duration"}) body.erase(k);
+  s["spreader"] = {{"use", scene["spreader"]["use"]}, {"law", scene["spreader"]["law"]}, {"at_rest", body}};
   return stable_hash(s.dump());
 }
 

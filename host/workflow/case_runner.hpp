@@ -26,8 +26,9 @@ struct CaseRequest {
 
 // The hash of everything that decides the case's result.
 std::string case_hash(const nlohmann::json &scene);
-// The hash of everything that decides the settled heap.
-std::string heap_hash(const nlohmann::json &scene);
+// The hash of everything that decides the settled heap (the spreader's part as its plugin describes
+// itself at rest).
+std::string heap_hash(const nlohmann::json &scene, PluginRegistry &registry);
 
 // True when the case folder holds a finished result for exactly these inputs, its state.vtp intact
 // (the size and hash case.json recorded).

@@ -19,18 +19,50 @@ namespace spreadmap {
 
 using engine::ParticleSet;
 
-CasePlugins::CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const nlohmann::json &spreader_params,
-                         const fs::path &scene_file) {
+CasePlugins::CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const fs::path &scene_file) {
   const auto &law = reg.get("contact", scene["contact"]["use"].get<std::string>());
   const auto &geo = reg.get("spreader", scene["spreader"]["use"].get<std::string>());
   const std::string at = scene_file.string() + ": ";
   pair = PluginInstance(law, scene["contact"]["params"].dump(), at + "scene.contact");
   substrate = PluginInstance(law, scene["substrate"]["law"].dump(), at + "scene.substrate");
   spreader_law = PluginInstance(law, scene["spreader"]["law"].dump(), at + "scene.spreader");
-  spreader = PluginInstance(geo, spreader_params.dump(), at + "scene.spreader");
+  spreader = PluginInstance(geo, scene["spreader"]["params"].dump(), at + "scene.spreader");
+}
+
+nlohmann::json to_json(const sm_spreader_description_v2 &d) {
+  return {{"outline_x", std::vector<double>(d.x, d.x + d.vertices)},
+          {"outline_z", std::vector<double>(d.z, d.z + d.vertices)},
+          {"y_centre", d.y_centre}, {"length", d.length}, {"turns", d.turns != 0},
+          {"start", d.start}, {"end", d.end}, {"speed", d.speed}, {"duration", d.duration}, {"gap", d.gap}};
+}
+
+nlohmann::json to_json(const sm_spreader_pose_v2 &p) {
+  return {{"reference", {p.reference[0], p.reference[1], p.reference[2]}}, {"angle", p.angle},
+          {"velocity", {p.velocity[0], p.velocity[1], p.velocity[2]}}, {"omega", p.omega},
+          {"x_min", p.x_min}, {"x_max", p.x_max}};
 }
 
 engine::ContactLaw CasePlugins::law(const PluginInstance &i) const { return {i.ops<sm_contact_ops_v1>(), i.get()}; }
+
+sm_spreader_description_v2 CasePlugins::spreader_description() const {
+  sm_spreader_description_v2 d{};
+  spreader_ops().describe(spreader.get(), &d);
+  return d;
+}
+
+sm_spreader_pose_v2 CasePlugins::spreader_pose(double t) const {
+  sm_spreader_pose_v2 pose{};
+  spreader_ops().pose(spreader.get(), t, &pose);
+  return pose;
+}
+
+sm_spreader_description_v2 describe_spreader(const nlohmann::json &scene, PluginRegistry &reg, const fs::path &scene_file) {
+  const auto &geo = reg.get("spreader", scene["spreader"]["use"].get<std::string>());
+  const PluginInstance spreader(geo, scene["spreader"]["params"].dump(), scene_file.string() + ": scene.spreader");
+  sm_spreader_description_v2 d{};
+  spreader.ops<sm_spreader_ops_v2>()->describe(spreader.get(), &d);
+  return d;
+}
 
 namespace {
 // Adds a plane wall whose law is the plugin `law`, and keeps the plugin: the GPU backend needs the
@@ -110,13 +142,10 @@ ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const 
                         const fs::path &scene_file, const std::function<void(double)> &progress) {
   const auto &powder = scene["powder"];
   const auto dom = make_domain(scene);
-  nlohmann::json resting = scene["spreader"]["params"];
-  resting["travel"] = 0.0;
-  resting["end"] = 0.0;
-  resting["omega"] = 0.0;
-  CasePlugins plugins(scene, reg, resting, scene_file);
-  sm_pose_v1 pose{};
-  plugins.spreader.ops<sm_geometry_ops_v1>()->pose(plugins.spreader.get(), 0.0, &pose);
+  CasePlugins plugins(scene, reg, scene_file);
+  const double t_settle = powder["settle_time"], v_rest = powder["settle_speed"];
+  // The spreader rests at its start for t < 0: while the heap settles it sees times before that.
+  const double rest_shift = -(t_settle + 1.0);
 
   scene::HeapSpec spec;
   const auto sizes = make_sizes(powder);
@@ -129,14 +158,15 @@ ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const 
   if (powder["volume"].get<double>() > 0) spec.solid_volume = powder["volume"];
   else spec.count = powder["count"].get<std::size_t>();
   spec.max_top = dom.hi[2] - 0.5 * dmax;
-  if (std::string(pose.shape) == "cylinder")
-    spec.excluded_cylinders.push_back({pose.centre[0], pose.centre[2], pose.radius + 0.05 * dmax});
-  else
-    spec.excluded_boxes.push_back({{pose.centre[0] - 0.5 * pose.thickness - 0.05 * dmax, -1e9, pose.centre[2]},
-                                   {pose.centre[0] + 0.5 * pose.thickness + 0.05 * dmax, 1e9, 1e9}});
+  // No sphere within a twentieth of the largest diameter of the spreader at rest.
+  const double clearance = 0.05 * dmax;
+  spec.excluded = [&](double x, double y, double z, double r) {
+    const double centre[3] = {x, y, z};
+    return plugins.spreader_ops().touches(plugins.spreader.get(), rest_shift, centre, r + clearance) != 0;
+  };
   const scene::Heap heap = scene::insert_heap(spec);
   spdlog::info("{}: heap of {} spheres inserted (top {:.2f} mm), settling {:.3g} s", label, heap.size(), heap.top * 1e3,
-               powder["settle_time"].get<double>());
+               t_settle);
 
   engine::Simulation<Real> sim(dom, plugins.law(plugins.pair), make_settings(scene, scene["time"]["step"]));
   ParticleSet set;
@@ -147,10 +177,9 @@ ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const 
   add_plane(sim, plane_laws, plugins, {0, 0, 0}, {0, 0, 1}, plugins.substrate, "substrate");
   add_plane(sim, plane_laws, plugins, {spec.region.lo[0], 0, 0}, {1, 0, 0}, plugins.spreader_law, "heap back wall");
   add_plane(sim, plane_laws, plugins, {spec.region.hi[0], 0, 0}, {-1, 0, 0}, plugins.spreader_law, "heap front wall");
-  sim.add_geometry({plugins.spreader.ops<sm_geometry_ops_v1>(), plugins.spreader.get(), plugins.law(plugins.spreader_law),
-                    "spreader/" + scene["spreader"]["use"].get<std::string>()});
+  sim.add_geometry({&plugins.spreader_ops(), plugins.spreader.get(), plugins.law(plugins.spreader_law),
+                    plugins.spreader.plugin()->id(), rest_shift});
   attach_backend(sim, scene, plugins, plane_laws);
-  const double t_settle = powder["settle_time"], v_rest = powder["settle_speed"];
   const double min_time = 0.3 * t_settle;
   sim.run_until(t_settle, [&](const engine::Simulation<Real> &s) {
     if (stop_requested()) return false;
@@ -167,14 +196,10 @@ ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const 
   return state;
 }
 
-template <class Real> const sm_geometry_ops_v1 *SpreadingRun<Real>::spreader_ops() const {
-  return plugins.spreader.template ops<sm_geometry_ops_v1>();
-}
-
 template <class Real>
 std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &scene, PluginRegistry &reg,
                                                        const ParticleSet &heap, const fs::path &scene_file) {
-  CasePlugins plugins(scene, reg, scene["spreader"]["params"], scene_file);
+  CasePlugins plugins(scene, reg, scene_file);
   const engine::ContactLaw pair = plugins.law(plugins.pair);
   auto run = std::unique_ptr<SpreadingRun<Real>>(new SpreadingRun<Real>{
       std::move(plugins), engine::Simulation<Real>(make_domain(scene), pair, make_settings(scene, scene["time"]["step"]))});
@@ -183,25 +208,19 @@ std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &sce
   sim.add_particles(heap, scene["powder"]["density"]);
   std::vector<const PluginInstance *> plane_laws;
   add_plane(sim, plane_laws, p, {0, 0, 0}, {0, 0, 1}, p.substrate, "substrate");
-  sim.add_geometry({run->spreader_ops(), p.spreader.get(), p.law(p.spreader_law),
-                    "spreader/" + scene["spreader"]["use"].get<std::string>()});
+  sim.add_geometry({&p.spreader_ops(), p.spreader.get(), p.law(p.spreader_law), p.spreader.plugin()->id()});
   attach_backend(sim, scene, p, plane_laws);
   return run;
 }
 
 template <class Real>
-bool run_spreading(engine::Simulation<Real> &sim, const sm_geometry_ops_v1 &ops, const void *spreader,
-                   const nlohmann::json &scene, double t_end, const typename engine::Simulation<Real>::StepCallback &callback,
-                   std::uint64_t every) {
+bool run_spreading(engine::Simulation<Real> &sim, const CasePlugins &plugins, const nlohmann::json &scene, double t_end,
+                   const typename engine::Simulation<Real>::StepCallback &callback, std::uint64_t every) {
   const bool sleep = scene["time"].value("sleep", false);
   const double behind = scene["time"].value("sleep_behind", 5e-3);
   auto follow = [&] {
     if (!sleep) return;
-    sm_pose_v1 pose{};
-    ops.pose(spreader, sim.time(), &pose);
-    // the trailing edge: a roller's rear, a blade's back face
-    const double rear = pose.centre[0] - std::max(pose.radius, 0.5 * pose.thickness);
-    sim.set_sleep_region(rear - behind);
+    sim.set_sleep_region(plugins.spreader_pose(sim.time()).x_min - behind);  // behind its trailing edge
   };
   follow();
   return sim.run_until(t_end, [&](const engine::Simulation<Real> &s) {
@@ -220,11 +239,9 @@ template std::unique_ptr<SpreadingRun<double>> make_spreading_run<double>(const 
                                                                           const ParticleSet &, const fs::path &);
 template std::unique_ptr<SpreadingRun<float>> make_spreading_run<float>(const nlohmann::json &, PluginRegistry &,
                                                                         const ParticleSet &, const fs::path &);
-template bool run_spreading<double>(engine::Simulation<double> &, const sm_geometry_ops_v1 &, const void *,
-                                    const nlohmann::json &, double, const engine::Simulation<double>::StepCallback &,
-                                    std::uint64_t);
-template bool run_spreading<float>(engine::Simulation<float> &, const sm_geometry_ops_v1 &, const void *,
-                                   const nlohmann::json &, double, const engine::Simulation<float>::StepCallback &,
-                                   std::uint64_t);
+template bool run_spreading<double>(engine::Simulation<double> &, const CasePlugins &, const nlohmann::json &, double,
+                                    const engine::Simulation<double>::StepCallback &, std::uint64_t);
+template bool run_spreading<float>(engine::Simulation<float> &, const CasePlugins &, const nlohmann::json &, double,
+                                   const engine::Simulation<float>::StepCallback &, std::uint64_t);
 
 }  // namespace spreadmap

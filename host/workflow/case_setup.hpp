@@ -13,6 +13,8 @@
 #include "core/registry.hpp"
 #include "engine/simulation.hpp"
 
+#include <spreadmap/geometry.hpp>
+
 namespace spreadmap {
 
 namespace fs = std::filesystem;
@@ -22,10 +24,20 @@ namespace fs = std::filesystem;
 struct CasePlugins {
   PluginInstance pair, substrate, spreader_law, spreader;
   // `scene_file`: the case's resolved scene (cases/cNNN/scene.json), named in a plugin's refusal.
-  CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const nlohmann::json &spreader_params,
-              const fs::path &scene_file);
+  CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const fs::path &scene_file);
   engine::ContactLaw law(const PluginInstance &i) const;
+  const sm_spreader_ops_v2 &spreader_ops() const { return *spreader.ops<sm_spreader_ops_v2>(); }
+  sm_spreader_description_v2 spreader_description() const;
+  sm_spreader_pose_v2 spreader_pose(double t) const;
 };
+
+// The scene's spreader as it describes itself (outline, travel, speed, gap), from a bound instance.
+sm_spreader_description_v2 describe_spreader(const nlohmann::json &scene, PluginRegistry &reg, const fs::path &scene_file);
+
+// As case.json records them (SI): the description's outline and extent along y, whether it turns,
+// its travel, speed and gap; a pose's reference point, angle, velocity, omega and x extent.
+nlohmann::json to_json(const sm_spreader_description_v2 &spreader);
+nlohmann::json to_json(const sm_spreader_pose_v2 &pose);
 
 engine::Domain make_domain(const nlohmann::json &scene);
 engine::Settings make_settings(const nlohmann::json &scene, double dt);
@@ -42,7 +54,6 @@ engine::ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg
 template <class Real> struct SpreadingRun {
   CasePlugins plugins;
   engine::Simulation<Real> sim;
-  const sm_geometry_ops_v1 *spreader_ops() const;
 };
 template <class Real>
 std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &scene, PluginRegistry &reg,
@@ -52,8 +63,7 @@ std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &sce
 // where particles may fall asleep follows the spreader (time.sleep_behind behind its trailing edge),
 // moved at every callback (every `every` steps). The case runner and the benchmarks run through here.
 template <class Real>
-bool run_spreading(engine::Simulation<Real> &sim, const sm_geometry_ops_v1 &ops, const void *spreader,
-                   const nlohmann::json &scene, double t_end,
+bool run_spreading(engine::Simulation<Real> &sim, const CasePlugins &plugins, const nlohmann::json &scene, double t_end,
                    const typename engine::Simulation<Real>::StepCallback &callback = {}, std::uint64_t every = 100);
 
 }  // namespace spreadmap

@@ -9,6 +9,7 @@
 #include "core/heightmap_vti.hpp"
 #include "core/schema.hpp"
 #include "core/units.hpp"
+#include "workflow/case_setup.hpp"
 #include "workflow/figure_style.hpp"
 #include "workflow/figures.hpp"
 #include "workflow/layer_eval.hpp"
@@ -34,7 +35,11 @@ class CharacteriseStage : public Stage {
     }
     if (plugin) request_.params = validate_params(SchemaView::of(*plugin->descriptor), cfg, file, "characterise", diag, host_keys);
     if (scene.is_null() || !scene.contains("domain")) return;
-    region_ = default_region(scene);
+    try {
+      region_ = default_region(scene, describe_spreader(scene, registry, file));
+    } catch (const std::exception &) {
+      return;  // the scene's own checks report the spreader's error
+    }
     if (const YAML::Node r = cfg["region"]) {
       if (!r.IsMap()) {
         diag.error(Location::of(file, r), "characterise.region", "must be a map", "write region: {x: [14 mm, 24 mm], y: [0 mm, 2.5 mm]}");
@@ -138,9 +143,7 @@ class CharacteriseStage : public Stage {
     rq.region = region_;
     const auto &d = scene["domain"];
     if (d["periodic_y"].get<bool>()) rq.periodic_y = std::make_pair(0.0, d["width"].get<double>());
-    const auto &sp = scene["spreader"]["params"];
-    rq.speed = sp.value("U", std::numeric_limits<double>::quiet_NaN());
-    rq.gap = sp.value("gap", std::numeric_limits<double>::quiet_NaN());
+    take_spreader(rq, describe_spreader(scene, ctx.registry, dir / "scene.json"));
     const LayerResult r = characterise_layer(ctx.registry, rq, particles);
     for (const auto &w : r.warnings) spdlog::warn("{}: {}", id, w);
     if (!r.height.empty()) write_heightmap_vti(dir / "heightmap.vti", r.nx, r.ny, r.x0, r.y0, r.cell, r.height.data());

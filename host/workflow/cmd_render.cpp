@@ -52,11 +52,11 @@ int cmd_render(int argc, char **argv) {
     }
     scene = {{"domain", {{"length", hx}, {"width", hy}, {"height", hz}}}, {"spreader", {{"use", ""}, {"params", nlohmann::json::object()}}}};
   }
-  // the spreader's pose where the case recorded it (case.json beside the state), else where it stops
-  nlohmann::json pose;
+  // the spreader as the case recorded it (case.json beside the state: its body and where it stopped)
+  nlohmann::json record;
   const fs::path case_json = fs::path(state).parent_path() / "case.json";
-  if (fs::exists(case_json)) pose = nlohmann::json::parse(read_text(case_json)).value("spreader_end", nlohmann::json());
-  figures::snapshot(particles, scene, out, title, pose);
+  if (fs::exists(case_json)) record = nlohmann::json::parse(read_text(case_json));
+  figures::snapshot(particles, scene, record, fs::path(out), title);
   if (!fs::exists(out)) throw RunFailure("error: render: " + out + " was not written (see the warning above)");
   std::cout << out << "\n";
   return 0;

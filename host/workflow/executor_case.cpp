@@ -6,6 +6,7 @@
 
 #include "core/error.hpp"
 #include "workflow/executor_hook.hpp"
+#include "core/files.hpp"
 #include "workflow/figures.hpp"
 #include "workflow/layer_eval.hpp"
 #include "workflow/run_dir.hpp"
@@ -22,7 +23,8 @@ std::string host_name() {
 // The end state as a picture, as the local path draws it; a figure never fails a case.
 void draw_snapshot(const CaseRequest &req) {
   try {
-    figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, req.dir / "snapshot.png",
+    const auto record = nlohmann::json::parse(read_text(req.dir / "case.json"));
+    figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, record, req.dir / "snapshot.png",
                       req.id + ": " + req.inputs.dump());
   } catch (const std::exception &e) {
     spdlog::warn("{}: snapshot not drawn: {}", req.id, e.what());

@@ -35,12 +35,12 @@ static void unavailable() {
   static std::once_flag once;
   std::call_once(once, [] { spdlog::warn("figures: this build has no VTK (SPREADMAP_ENABLE_VTK=OFF); no PNG is written"); });
 }
-void snapshot(const engine::ParticleSet &, const nlohmann::json &, const fs::path &, const std::string &,
-              const nlohmann::json &) {
+void snapshot(const engine::ParticleSet &, const nlohmann::json &, const nlohmann::json &, const fs::path &,
+              const std::string &, const nlohmann::json &) {
   unavailable();
 }
 std::size_t frames(const std::vector<engine::ParticleSet> &, const std::vector<nlohmann::json> &, const nlohmann::json &,
-                   const fs::path &, const std::string &) {
+                   const nlohmann::json &, const fs::path &, const std::string &) {
   unavailable();
   return 0;
 }
@@ -119,9 +119,10 @@ render::Quantity quantity(const std::string &name, const std::string &unit) {
 
 namespace {
 
-// The particles with the spreader drawn at `pose` ({x, z, angle} as case.json records it; absent:
-// where the spreader stops, unrotated).
-render::SnapshotInput snapshot_input(const engine::ParticleSet &p, const nlohmann::json &scene, const nlohmann::json &pose) {
+// The particles with the spreader as `record` (case.json) describes it, at `pose` (null: where it
+// stopped).
+render::SnapshotInput snapshot_input(const engine::ParticleSet &p, const nlohmann::json &scene, const nlohmann::json &record,
+                                     const nlohmann::json &pose) {
   render::SnapshotInput in;
   in.x = p.x;
   in.y = p.y;
@@ -132,46 +133,33 @@ render::SnapshotInput snapshot_input(const engine::ParticleSet &p, const nlohman
     for (std::size_t i = 0; i < p.size(); ++i) in.speed[i] = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
   const auto &d = scene.at("domain");
   in.domain.hi = {d.at("length").get<double>(), d.at("width").get<double>(), d.at("height").get<double>()};
-  const auto &s = scene.at("spreader");
-  const auto &sp = s.at("params");
-  const double end = sp.value("end", 0.0) > sp.value("start", 0.0) ? sp.value("end", 0.0)
-                                                                   : sp.value("start", 0.0) + sp.value("travel", 0.0);
-  const double x = pose.is_object() ? pose.value("x", end) : end;
-  in.spreader.angle = pose.is_object() ? pose.value("angle", 0.0) : 0.0;
-  if (s.value("use", "") == "roller") {
-    const double r = sp.value("diameter", 0.01) / 2;
-    in.spreader.shape = "cylinder";
-    in.spreader.radius = r;
-    in.spreader.centre = {x, in.domain.hi[1] / 2, sp.value("gap", 0.0) + r};
-    in.spreader.length = sp.value("length", in.domain.hi[1]);
-  } else if (s.value("use", "") == "blade") {
-    const double h = sp.value("height", 0.005);
-    in.spreader.shape = "blade";
-    in.spreader.thickness = sp.value("thickness", 0.001);
-    in.spreader.height = h;
-    in.spreader.length = sp.value("length", in.domain.hi[1]);
-    in.spreader.centre = {x, in.domain.hi[1] / 2, sp.value("gap", 0.0) + h / 2};
-    in.spreader.angle = 0;
-  } else {
-    in.spreader.shape = "";
-  }
+  const auto &body = record.is_object() ? record.value("spreader", nlohmann::json()) : nlohmann::json();
+  const auto &at = pose.is_object() ? pose : (record.is_object() ? record.value("spreader_end", nlohmann::json()) : nlohmann::json());
+  if (!body.is_object() || !at.is_object() || !at.contains("reference")) return in;  // an older record: none drawn
+  in.spreader.outline_x = body.at("outline_x").get<std::vector<double>>();
+  in.spreader.outline_z = body.at("outline_z").get<std::vector<double>>();
+  in.spreader.y_centre = body.at("y_centre");
+  in.spreader.length = body.at("length");
+  in.spreader.turns = body.at("turns");
+  in.spreader.reference = at.at("reference").get<std::array<double, 3>>();
+  in.spreader.angle = at.at("angle");
   return in;
 }
 
 }  // namespace
 
-void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const fs::path &png, const std::string &title,
-              const nlohmann::json &pose) {
-  guarded(png, [&] { render::snapshot(snapshot_input(p, scene, pose), png, sized(1600, 900, title)); });
+void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const nlohmann::json &record, const fs::path &png,
+              const std::string &title, const nlohmann::json &pose) {
+  guarded(png, [&] { render::snapshot(snapshot_input(p, scene, record, pose), png, sized(1600, 900, title)); });
 }
 
 std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::vector<nlohmann::json> &poses,
-                   const nlohmann::json &scene, const fs::path &dir, const std::string &title) {
+                   const nlohmann::json &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title) {
   std::size_t written = 0;
   guarded(dir / "frame_0000.png", [&] {
     std::vector<render::SnapshotInput> in;
     for (std::size_t k = 0; k < states.size(); ++k)
-      in.push_back(snapshot_input(states[k], scene, k < poses.size() ? poses[k] : nlohmann::json()));
+      in.push_back(snapshot_input(states[k], scene, record, k < poses.size() ? poses[k] : nlohmann::json()));
     written = render::animation_frames(in, dir, "frame", sized(1600, 900, title)).size();
   });
   return written;

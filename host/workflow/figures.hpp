@@ -22,14 +22,16 @@ bool available();
 // "c004: U = 70 mm/s, omega = 0 rad/s" from a case's design inputs (SI), for figure titles.
 std::string case_title(const std::string &id, const nlohmann::json &inputs);
 
-// The particles with the spreader drawn at `pose` ({x, z, angle}: case.json's spreader_end or a
-// series entry's spreader; null: where it stops, unrotated); `scene` is the case's resolved scene.
-// Sizes and vector copies follow the stage's style (figure_style.hpp).
-void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const fs::path &png, const std::string &title,
-              const nlohmann::json &pose = nullptr);
+// The particles with the spreader drawn as the case recorded it: `record` is case.json (its
+// `spreader` describes the body, its `spreader_end` is the pose where it stopped), `pose` a series
+// entry's pose instead (null: spreader_end). A record without them (written by an older version)
+// draws no spreader. `scene` is the case's resolved scene. Sizes and vector copies follow the
+// stage's style (figure_style.hpp).
+void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const nlohmann::json &record, const fs::path &png,
+              const std::string &title, const nlohmann::json &pose = nullptr);
 // Numbered frames dir/frame_0000.png ... of a snapshot series, one colour scale for all; returns how many.
 std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::vector<nlohmann::json> &poses,
-                   const nlohmann::json &scene, const fs::path &dir, const std::string &title);
+                   const nlohmann::json &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title);
 void heightmap(const LayerResult &layer, const fs::path &png, const std::string &title);
 // Predicted against simulated V_s and R_q, training and test rows.
 void parity(const analysis::Report &report, const std::vector<std::string> &outputs, const fs::path &png);

@@ -87,17 +87,20 @@ Region parse_region(const std::string &text, const std::string &what) {
 // Default sampling region. Full-width scenes: the study's 50 mm x 50 mm square centred on the
 // substrate. Periodic strips: the whole width over the middle 40 % of the spreader's travel, clear
 // of the heap at the start and of the spreader's wake at the end.
-Region default_region(const nlohmann::json &scene) {
+Region default_region(const nlohmann::json &scene, const sm_spreader_description_v2 &spreader) {
   const auto &d = scene["domain"];
   const double length = d["length"], width = d["width"];
   if (!d["periodic_y"].get<bool>()) {
     const double side = 0.05;
     return {length / 2 - side / 2, length / 2 + side / 2, width / 2 - side / 2, width / 2 + side / 2};
   }
-  const auto &sp = scene["spreader"]["params"];
-  const double start = sp.value("start", 0.0);
-  const double end = sp.value("end", 0.0) > start ? sp.value("end", 0.0) : start + sp.value("travel", 0.0);
+  const double start = spreader.start, end = spreader.end;
   return {start + 0.3 * (end - start), start + 0.7 * (end - start), 0.0, width};
+}
+
+void take_spreader(LayerRequest &request, const sm_spreader_description_v2 &spreader) {
+  request.speed = spreader.speed;
+  request.gap = spreader.gap;
 }
 
 const std::vector<std::string> &standard_metric_order() {

@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include <spreadmap/geometry.hpp>
+
 #include "core/registry.hpp"
 #include "engine/particle_set.hpp"
 
@@ -49,7 +51,11 @@ Region parse_region(const std::string &text, const std::string &what);
 // The sampling region of a scene when the workflow sets none: the study's 50 mm x 50 mm square
 // centred on the substrate for full-width scenes; for periodic strips the whole width over the
 // middle 40 % of the spreader's travel.
-Region default_region(const nlohmann::json &scene);
+Region default_region(const nlohmann::json &scene, const sm_spreader_description_v2 &spreader);
+
+// What the layer's metrics take from the spreader that spread it: its speed U (V_s = mean height x
+// U) and its gap.
+void take_spreader(LayerRequest &request, const sm_spreader_description_v2 &spreader);
 
 // The metric columns of metrics.csv, in this order (extra metrics of other plugins follow).
 const std::vector<std::string> &standard_metric_order();

@@ -6,6 +6,7 @@
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
+#include "workflow/presets.hpp"
 
 namespace spreadmap {
 namespace sm = spreadmap;
@@ -13,10 +14,10 @@ namespace {
 
 constexpr sm_param_v1 domain_params[] = {
     sm::number("length", "m", 1e-3, 10, 0.04, "extent along x, the spreading direction (x from 0)"),
-    sm::number("width", "m", 1e-4, 10, 2.5e-3, "extent along y, the roller axis (y from 0)"),
+    sm::number("width", "m", 1e-4, 10, 2.5e-3, "extent along y, across the spreading direction (y from 0)"),
     sm::number("height", "m", 1e-3, 10, 0.015, "extent along z above the substrate (z from 0)"),
     sm::boolean("periodic_x", false, "periodic along x (usually not: particles leave and are counted)"),
-    sm::boolean("periodic_y", true, "periodic along y: a strip stands for the full roller length"),
+    sm::boolean("periodic_y", true, "periodic along y: a strip stands for the full spreader length"),
 };
 
 constexpr sm_param_v1 powder_params[] = {
@@ -60,42 +61,6 @@ constexpr sm_param_v1 engine_params[] = {
     sm::number("gravity", "m/s^2", 0, 1000, 9.81, "gravitational acceleration along -z"),
 };
 
-constexpr const char *quick_preset = R"(
-domain: {length: 30 mm, width: 1.25 mm, height: 12 mm, periodic_x: false, periodic_y: true}
-powder: {diameter: 250 um, density: 4430 kg/m^3, count: 1600, heap_from: 6 mm, heap_to: 13 mm,
-         settle_time: 0.06 s}
-substrate: {friction: 0.25, restitution: 0.8}
-spreader: {use: roller, diameter: 10 mm, gap: 0.5 mm, start: 6 mm, travel: 18 mm, U: 100 mm/s,
-           omega: 0 rad/s, friction: 0.12, restitution: 0.8}
-contact: {use: hooke_slider, v_max: 0.5 m/s, overlap_max: 5 um, friction: 0.185, restitution: 0.8}
-time: {safety: 0.4, relax: 0.01 s}
-)";
-
-// The peers' reduced scene (shared/peers/README.md): 5000 spheres on a 2.5 mm periodic strip.
-constexpr const char *standard_preset = R"(
-domain: {length: 50 mm, width: 2.5 mm, height: 15 mm, periodic_x: false, periodic_y: true}
-powder: {diameter: 250 um, density: 4430 kg/m^3, count: 5000, heap_from: 6 mm, heap_to: 18 mm,
-         settle_time: 0.1 s}
-substrate: {friction: 0.25, restitution: 0.8}
-spreader: {use: roller, diameter: 10 mm, gap: 0.5 mm, start: 6 mm, travel: 26 mm, U: 100 mm/s,
-           omega: 0 rad/s, friction: 0.12, restitution: 0.8}
-contact: {use: hooke_slider, v_max: 0.5 m/s, overlap_max: 2.5 um, friction: 0.185, restitution: 0.8}
-time: {step: 7.5e-7 s, relax: 0.01 s}
-)";
-
-// The study's scene: the full 70 mm roller, ~235,000 spheres, a 120 mm plate with the 50 x 50 mm
-// sampling region centred on it.
-constexpr const char *paper_preset = R"(
-domain: {length: 120 mm, width: 70 mm, height: 20 mm, periodic_x: false, periodic_y: false}
-powder: {diameter: 250 um, density: 4430 kg/m^3, count: 235000, heap_from: 6 mm, heap_to: 24 mm,
-         settle_time: 0.1 s}
-substrate: {friction: 0.25, restitution: 0.8}
-spreader: {use: roller, diameter: 10 mm, length: 70 mm, gap: 0.5 mm, start: 6 mm, travel: 104 mm,
-           U: 100 mm/s, omega: 0 rad/s, friction: 0.12, restitution: 0.8}
-contact: {use: hooke_slider, v_max: 0.5 m/s, overlap_max: 2.5 um, friction: 0.185, restitution: 0.8}
-time: {safety: 0.4, relax: 0.01 s}
-)";
-
 struct Section {
   const char *name;
   const sm_param_v1 *params;
@@ -120,8 +85,8 @@ YAML::Node overlay(const YAML::Node &preset, const YAML::Node &user) {
   return out;
 }
 
-// The keys of `node` that one of the schemas declares. A preset is written for the default plugins
-// (roller, hooke_slider); when the user picks another plugin, the preset's values apply only where
+// The keys of `node` that one of the schemas declares. A preset is written for the plugins it names
+// (presets/*.yaml); when the user picks another plugin, the preset's values apply only where
 // that plugin has the key. The user's own spreader keys are split this way between geometry and law.
 YAML::Node known_only(const YAML::Node &node, const SchemaView &a, const SchemaView &b = {}) {
   YAML::Node out(YAML::NodeType::Map);
@@ -212,9 +177,9 @@ void probe_plugins(const nlohmann::json &scene, const LoadedPlugin &law, const L
 }  // namespace
 
 const char *preset_text(const std::string &preset) {
-  if (preset == "standard") return standard_preset;
-  if (preset == "paper") return paper_preset;
-  return quick_preset;
+  if (preset == "standard") return presets::standard;
+  if (preset == "paper") return presets::paper;
+  return presets::quick;
 }
 
 nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagnostics &diag) {

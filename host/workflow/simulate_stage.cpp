@@ -179,8 +179,7 @@ class SimulateStage : public Stage {
     try {
       const auto c = nlohmann::json::parse(read_text(req.dir / "case.json"));
       const std::string title = figures::case_title(req.id, req.inputs);
-      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, req.dir / "snapshot.png", title,
-                        c.value("spreader_end", nlohmann::json()));
+      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, c, req.dir / "snapshot.png", title);
       if (!figures::current_style().frames || !c.contains("series")) return;
       std::vector<engine::ParticleSet> states;
       std::vector<nlohmann::json> poses;
@@ -188,7 +187,7 @@ class SimulateStage : public Stage {
         states.push_back(read_particle_file(req.dir / e["file"].get<std::string>()));
         poses.push_back(e["spreader"]);
       }
-      const auto n = figures::frames(states, poses, req.scene, req.dir / "frames", title);
+      const auto n = figures::frames(states, poses, req.scene, c, req.dir / "frames", title);
       spdlog::info("{}: {} frames in {}", req.id, n, (req.dir / "frames").string());
     } catch (const std::exception &e) {
       spdlog::warn("{}: snapshot not drawn: {}", req.id, e.what());

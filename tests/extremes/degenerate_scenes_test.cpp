@@ -86,9 +86,9 @@ TEST_P(SingleSphereUnderRoller, IsPushedAheadNeverSwallowed) {
   EXPECT_LE(w.worst_roller, 0.1);
   EXPECT_EQ(w.roller_inside, 0u);
   ASSERT_EQ(scene.sim().size(), 1u);
-  spreadmap::sm_pose_v1 pose{};
+  spreadmap::sm_spreader_pose_v2 pose{};
   scene.roller().pose(scene.sim().time(), &pose);
-  EXPECT_GT(scene.sim().state().x[0], pose.centre[0]) << "the sphere passed under a gap of 0.6 d";
+  EXPECT_GT(scene.sim().state().x[0], pose.reference[0]) << "the sphere passed under a gap of 0.6 d";
   EXPECT_LE(w.energy_growth_after(scene.spreading_time()), 1.0 + 1e-3);
 }
 
@@ -121,7 +121,7 @@ TEST(SingleSphere, WedgedUnderAForwardRollingRollerStopsTheRunClearly) {
   EXPECT_LE(w.worst_substrate, 0.1);
   const auto s = scene.sim().state();
   ASSERT_EQ(first_non_finite(s), "");
-  spreadmap::sm_pose_v1 pose{};
+  spreadmap::sm_spreader_pose_v2 pose{};
   scene.roller().pose(scene.sim().time(), &pose);
-  EXPECT_GT(s.x[0], pose.centre[0]) << "the sphere passed under a gap of 0.6 d";
+  EXPECT_GT(s.x[0], pose.reference[0]) << "the sphere passed under a gap of 0.6 d";
 }

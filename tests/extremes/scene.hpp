@@ -57,7 +57,7 @@ class Scene {
   bool has_roller() const { return roller_.has_value(); }
   const spreader::Roller &roller() const { return *roller_; }
   // Seconds until the roller stops (0 without one).
-  double spreading_time() const { return roller_ ? roller_->duration() : 0.0; }
+  double spreading_time() const { return roller_ ? roller_->body.travel.duration : 0.0; }
   // The contact frequency every hooke_slider contact shares (V_max / Delta_max) [rad/s].
   double omega0() const { return spec_.v_max / spec_.overlap_max; }
 

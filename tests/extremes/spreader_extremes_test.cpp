@@ -96,11 +96,11 @@ TEST_P(NarrowGap, NoSphereSinksOrTunnels) {
   const Watch w = spread(scene);
   expect_clean_run(scene, w, label(spec));
   if (GetParam() >= 1 - 2 * overlap_limit) return;
-  spreadmap::sm_pose_v1 pose{};
+  spreadmap::sm_spreader_pose_v2 pose{};
   scene.roller().pose(scene.sim().time(), &pose);
   const auto s = scene.sim().state();
   std::size_t behind = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) behind += s.x[i] < pose.centre[0] ? 1 : 0;
+  for (std::size_t i = 0; i < s.size(); ++i) behind += s.x[i] < pose.reference[0] ? 1 : 0;
   EXPECT_EQ(behind, 0u) << "spheres passed under a roller whose gap is " << GetParam() << " d";
 }
 INSTANTIATE_TEST_SUITE_P(Gap, NarrowGap, ::testing::Values(0.9, 0.6, 0.2), [](const auto &info) {

@@ -121,7 +121,9 @@ void expect_physical_case(const fs::path &case_dir, int count) {
   EXPECT_EQ(first_non_finite(s), "");
   EXPECT_EQ(int(s.size()) + j["removed"].get<int>(), count);
   EXPECT_LE(deepest_substrate_overlap(s), 0.1);
-  const double ax = j["spreader_end"]["x"], az = j["spreader_end"]["z"], R = j["spreader_end"]["radius"];
+  // the roller's axis where it stopped, and its radius from the outline it recorded (a disc about the axis)
+  const double ax = j["spreader_end"]["reference"][0], az = j["spreader_end"]["reference"][2];
+  const double R = std::hypot(j["spreader"]["outline_x"][0].get<double>(), j["spreader"]["outline_z"][0].get<double>());
   for (std::size_t i = 0; i < s.size(); ++i) {
     const double dist = std::hypot(s.x[i] - ax, s.z[i] - az);
     EXPECT_GE(dist, R + s.radius[i] - 0.1 * 2 * s.radius[i]) << "sphere id " << s.id[i] << " inside the roller";

@@ -183,7 +183,7 @@ TEST_P(SpreaderBackends, ContactRecordsMatchTheCpuInDouble) {
   params["U"] = 0.05;
   const auto &plugin = registry().get("spreader", GetParam().name);
   sm::PluginInstance geometry(plugin, sm::test::plugin_params(plugin.descriptor, params));
-  const auto *ops = geometry.ops<sm::sm_geometry_ops_v1>();
+  const auto *ops = geometry.ops<sm::sm_spreader_ops_v2>();
   const auto kernels = sm::cuda::spreader_kernels(plugin);
 
   auto cw = sm::test::make_wall_records(cpu, spec);

@@ -66,11 +66,11 @@ struct TestBall {
     hit.velocity = {Real(velocity[0]), Real(velocity[1]), Real(velocity[2])};
     return true;
   }
-  double duration() const { return 1; }
   double max_surface_speed() const {
     return std::sqrt(velocity[0] * velocity[0] + velocity[1] * velocity[1] + velocity[2] * velocity[2]);
   }
-  void pose(double, sm::sm_pose_v1 *out) const { *out = sm::sm_pose_v1{}; }
+  void describe(sm::sm_spreader_description_v2 *) const {}
+  void pose(double, sm::sm_spreader_pose_v2 *) const {}
 };
 
 template <class Real> bool same_bits(const std::vector<Real> &a, const std::vector<Real> &b) {
@@ -194,9 +194,9 @@ TEST(EngineGeometry, NearParticlesOnlyGiveTheSameBitsAsEveryParticle) {
   // geometry for every particle; with it, only for those near the ball.
   Scene scene;
   const TestBall ball{{0.006, 0.006, 0.03}, {0.02, 0.01, -0.3}, 0.003};
-  sm::sm_geometry_ops_v1 unbounded = sm::detail::GeometryOps<TestBall>::table;
+  sm::sm_spreader_ops_v2 unbounded = sm::detail::GeometryOps<TestBall>::table;
   unbounded.max_surface_speed = nullptr;
-  auto run = [&](const sm::sm_geometry_ops_v1 *ops) {
+  auto run = [&](const sm::sm_spreader_ops_v2 *ops) {
     auto sim = scene.make(quiet());
     if (ops) sim->add_geometry({ops, &ball, bind_slider(scene.wall), "ball"});
     sim->run_steps(1500);

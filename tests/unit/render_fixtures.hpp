@@ -33,10 +33,14 @@ inline SnapshotInput heap_snapshot(int count = 2000, double roller_angle = 0.6) 
     s.r.push_back(0.000125);
     s.speed.push_back(0.1 * std::exp(-(x - 0.016) * (x - 0.016) / 1e-5) * g.next());
   }
-  s.spreader.shape = "cylinder";
-  s.spreader.centre = {0.021, 0.00125, 0.0055};
-  s.spreader.radius = 0.005;
+  for (int k = 0; k < 72; ++k) {  // a 10 mm roller's disc
+    s.spreader.outline_x.push_back(0.005 * std::cos(2 * 3.14159265358979 * k / 72));
+    s.spreader.outline_z.push_back(0.005 * std::sin(2 * 3.14159265358979 * k / 72));
+  }
+  s.spreader.reference = {0.021, 0.00125, 0.0055};
+  s.spreader.y_centre = 0.00125;
   s.spreader.length = 0.07;
+  s.spreader.turns = true;
   s.spreader.angle = roller_angle;
   return s;
 }

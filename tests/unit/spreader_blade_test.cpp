@@ -2,6 +2,7 @@
 // lower corners, against closed forms.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "plugins/spreader/blade/blade.hpp"
@@ -92,19 +93,36 @@ TEST(SpreaderBlade, CentreInsideUsesTheNearestFace) {
 
 TEST(SpreaderBlade, MovesAndParksAndRefusesOversizedEdge) {
   const Blade g = sm::test::bind_with<Blade>({{"travel", 10e-3}, {"edge_radius", 0.5e-3}});
-  EXPECT_DOUBLE_EQ(g.duration(), 0.1);
+  EXPECT_DOUBLE_EQ(sm::test::description_of(g).duration, 0.1);
   EXPECT_DOUBLE_EQ(g.max_surface_speed(), U);
   const auto hit = touch(g, {xc + U * 0.05 + half_t + r - delta, 0.0, 3e-3}, 0.05);
   EXPECT_NEAR(hit.overlap, delta, 1e-14);
-  sm::sm_pose_v1 pose;
-  g.pose(0.05, &pose);
-  EXPECT_STREQ(pose.shape, "blade");
-  EXPECT_NEAR(pose.centre[0], xc + U * 0.05, 1e-15);
-  EXPECT_DOUBLE_EQ(pose.centre[2], gap);
-  EXPECT_DOUBLE_EQ(pose.thickness, 2 * half_t);
-  EXPECT_DOUBLE_EQ(pose.radius, 0.5e-3);
-  g.pose(1.0, &pose);
-  EXPECT_NEAR(pose.centre[0], xc + 10e-3, 1e-15);
+  auto pose = sm::test::pose_of(g, 0.05);
+  EXPECT_NEAR(pose.reference[0], xc + U * 0.05, 1e-15);
+  EXPECT_DOUBLE_EQ(pose.reference[2], gap);
+  EXPECT_DOUBLE_EQ(pose.x_max - pose.x_min, 2 * half_t);
+  EXPECT_DOUBLE_EQ(pose.angle, 0.0);
+  pose = sm::test::pose_of(g, 1.0);
+  EXPECT_NEAR(pose.reference[0], xc + 10e-3, 1e-15);
   EXPECT_DOUBLE_EQ(pose.velocity[0], 0.0);
   EXPECT_THROW(sm::test::bind_with<Blade>({{"edge_radius", 0.6e-3}}), sm::ParamError);  // > thickness / 2
+}
+
+// The outline is the rounded rectangle: its extent is the blade's, its lower corners lie on the
+// edge arcs, and its lowest points are at the reference (the middle of the lowest edge).
+TEST(SpreaderBlade, OutlineIsTheRoundedRectangle) {
+  const Blade g = sm::test::bind_with<Blade>({{"edge_radius", 0.25e-3}});
+  const auto d = sm::test::description_of(g);
+  double x_lo = 1, x_hi = -1, z_lo = 1, z_hi = -1;
+  for (std::uint32_t k = 0; k < d.vertices; ++k) {
+    x_lo = std::min(x_lo, d.x[k]), x_hi = std::max(x_hi, d.x[k]);
+    z_lo = std::min(z_lo, d.z[k]), z_hi = std::max(z_hi, d.z[k]);
+    if (d.z[k] < 0.25e-3 && std::abs(d.x[k]) > half_t - 0.25e-3)  // on an arc: 0.25 mm from its centre
+      EXPECT_NEAR(std::hypot(std::abs(d.x[k]) - (half_t - 0.25e-3), d.z[k] - 0.25e-3), 0.25e-3, 1e-15);
+  }
+  EXPECT_NEAR(x_lo, -half_t, 1e-15);
+  EXPECT_NEAR(x_hi, half_t, 1e-15);
+  EXPECT_NEAR(z_lo, 0.0, 1e-15);
+  EXPECT_DOUBLE_EQ(d.gap, gap);
+  EXPECT_EQ(d.turns, 0);
 }

@@ -109,18 +109,27 @@ TEST(SpreaderRoller, EndFacesBoundTheLength) {
 
 TEST(SpreaderRoller, TravelsAtUThenStops) {
   const Roller g = sm::test::bind_with<Roller>({{"omega", 12.0}, {"travel", 20e-3}});
-  EXPECT_DOUBLE_EQ(g.duration(), 0.2);                       // 20 mm at 0.1 m/s
+  const auto d = sm::test::description_of(g);
+  EXPECT_DOUBLE_EQ(d.duration, 0.2);                         // 20 mm at 0.1 m/s
+  EXPECT_DOUBLE_EQ(d.start, start);
+  EXPECT_DOUBLE_EQ(d.end, start + 20e-3);
+  EXPECT_DOUBLE_EQ(d.speed, U);
+  EXPECT_DOUBLE_EQ(d.gap, axis_z - R);
+  EXPECT_EQ(d.turns, 1);
   EXPECT_DOUBLE_EQ(g.max_surface_speed(), U + 12.0 * R);
-  sm::sm_pose_v1 pose;
-  g.pose(0.05, &pose);
-  EXPECT_STREQ(pose.shape, "cylinder");
-  EXPECT_NEAR(pose.centre[0], start + U * 0.05, 1e-15);
-  EXPECT_DOUBLE_EQ(pose.centre[2], axis_z);
+  auto pose = sm::test::pose_of(g, 0.05);
+  EXPECT_NEAR(pose.reference[0], start + U * 0.05, 1e-15);
+  EXPECT_DOUBLE_EQ(pose.reference[2], axis_z);
   EXPECT_DOUBLE_EQ(pose.angle, 12.0 * 0.05);
   EXPECT_DOUBLE_EQ(pose.velocity[0], U);
-  g.pose(0.5, &pose);                                        // after the end: parked, still
-  EXPECT_NEAR(pose.centre[0], start + 20e-3, 1e-15);
+  EXPECT_DOUBLE_EQ(pose.x_min, pose.reference[0] - R);
+  pose = sm::test::pose_of(g, 0.5);                          // after the end: parked, still
+  EXPECT_NEAR(pose.reference[0], start + 20e-3, 1e-15);
   EXPECT_DOUBLE_EQ(pose.angle, 12.0 * 0.2);
+  EXPECT_DOUBLE_EQ(pose.velocity[0], 0.0);
+  EXPECT_DOUBLE_EQ(pose.omega, 0.0);
+  pose = sm::test::pose_of(g, -1.0);                         // before the start: at rest at start
+  EXPECT_DOUBLE_EQ(pose.reference[0], start);
   EXPECT_DOUBLE_EQ(pose.velocity[0], 0.0);
   EXPECT_DOUBLE_EQ(pose.omega, 0.0);
   // The contact follows the pose; a parked roller's surface is at rest.
@@ -129,14 +138,14 @@ TEST(SpreaderRoller, TravelsAtUThenStops) {
   const auto parked = touch(g, {start + 20e-3, 0.0, axis_z - R - r + delta}, 0.5);
   EXPECT_NEAR(parked.overlap, delta, tol_len);
   EXPECT_DOUBLE_EQ(parked.velocity.x, 0.0);
-  g.pose(-1.0, &pose);                                       // before the start: at start, still
-  EXPECT_DOUBLE_EQ(pose.centre[0], start);
-  EXPECT_DOUBLE_EQ(pose.velocity[0], 0.0);
+  const auto resting = touch(g, {start, 0.0, axis_z - R - r + delta}, -1.0);  // before the start: still
+  EXPECT_NEAR(resting.overlap, delta, tol_len);
+  EXPECT_DOUBLE_EQ(resting.velocity.x, 0.0);
 }
 
 TEST(SpreaderRoller, EndOverridesTravel) {
   const Roller g = sm::test::bind_with<Roller>({{"end", 32e-3}, {"U", 0.05}});
-  EXPECT_NEAR(g.duration(), 26e-3 / 0.05, 1e-15);
+  EXPECT_NEAR(sm::test::description_of(g).duration, 26e-3 / 0.05, 1e-15);
   EXPECT_THROW(sm::test::bind_with<Roller>({{"end", 5e-3}}), sm::ParamError);  // behind start = 6 mm
 }
 
@@ -150,4 +159,11 @@ TEST(SpreaderRoller, SinglePrecisionAgrees) {
   EXPECT_NEAR(hf.overlap, hd.overlap, 2e-9);
   EXPECT_NEAR(hf.velocity.x, hd.velocity.x, 1e-6);
   EXPECT_NEAR(hf.velocity.z, hd.velocity.z, 1e-6);
+}
+
+// The outline the figures draw is the disc about the axis: every vertex at R from the reference.
+TEST(SpreaderRoller, OutlineIsTheDiscAboutItsAxis) {
+  const auto d = sm::test::description_of(sm::test::bind_with<Roller>());
+  ASSERT_GE(d.vertices, 36u);
+  for (std::uint32_t k = 0; k < d.vertices; ++k) EXPECT_NEAR(std::hypot(d.x[k], d.z[k]), R, 1e-15);
 }

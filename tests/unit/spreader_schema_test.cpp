@@ -69,8 +69,10 @@ TEST(SpreaderSchema, RollerModuleComputesContactsThroughItsOps) {
   sm_error err{};
   void *self = d->create(values.dump().c_str(), &err);
   ASSERT_NE(self, nullptr) << err.text;
-  const auto *ops = static_cast<const sm::sm_geometry_ops_v1 *>(d->ops);
-  EXPECT_DOUBLE_EQ(ops->duration(self), 26e-3 / 0.1);
+  const auto *ops = static_cast<const sm::sm_spreader_ops_v2 *>(d->ops);
+  sm::sm_spreader_description_v2 description{};
+  ops->describe(self, &description);
+  EXPECT_DOUBLE_EQ(description.duration, 26e-3 / 0.1);
   EXPECT_DOUBLE_EQ(ops->max_surface_speed(self), 0.1 + 20.0 * 5e-3);
 
   // Two spheres: one under the roller bottom (overlap 10 um), one far away.
@@ -90,10 +92,15 @@ TEST(SpreaderSchema, RollerModuleComputesContactsThroughItsOps) {
   EXPECT_NEAR(vx[0], 0.0, 1e-14);  // omega = U/R: the bottom is at rest
   EXPECT_EQ(ov[1], 0.0);
 
-  sm::sm_pose_v1 pose;
+  sm::sm_spreader_pose_v2 pose;
   ops->pose(self, 0.1, &pose);
-  EXPECT_STREQ(pose.shape, "cylinder");
-  EXPECT_NEAR(pose.centre[0], 6e-3 + 0.01, 1e-15);
+  EXPECT_NEAR(pose.reference[0], 6e-3 + 0.01, 1e-15);
+
+  // touches(): the sphere under the roller bottom, at rest (t < 0) as when moving; not the far one.
+  const double under[3] = {x[0], y[0], z[0]}, far[3] = {x[1], y[1], z[1]};
+  EXPECT_EQ(ops->touches(self, -1.0, under, r[0]), 1);
+  EXPECT_EQ(ops->touches(self, -1.0, under, r[0] - 11e-6), 0);  // 1 um short of the surface
+  EXPECT_EQ(ops->touches(self, -1.0, far, r[1]), 0);
   d->destroy(self);
 }
 

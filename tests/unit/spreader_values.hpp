@@ -1,6 +1,7 @@
 // Test helper: a spreader's bound Values from its schema defaults plus overrides, as the host
 // would pass them (every key present, SI).
 #pragma once
+#include <spreadmap/geometry.hpp>
 #include <spreadmap/params.hpp>
 
 #include <nlohmann/json.hpp>
@@ -27,6 +28,18 @@ template <class Geometry> Geometry bind_with(const nlohmann::json &overrides = n
   nlohmann::json j = schema_defaults(Geometry::params);
   for (auto it = overrides.begin(); it != overrides.end(); ++it) j[it.key()] = it.value();
   return Geometry::bind(Values(j));
+}
+
+// What a bound geometry says of itself, as the host reads it through the ABI.
+template <class Geometry> sm_spreader_description_v2 description_of(const Geometry &g) {
+  sm_spreader_description_v2 d{};
+  g.describe(&d);
+  return d;
+}
+template <class Geometry> sm_spreader_pose_v2 pose_of(const Geometry &g, double t) {
+  sm_spreader_pose_v2 p{};
+  g.pose(t, &p);
+  return p;
 }
 
 }  // namespace spreadmap::test

@@ -1,4 +1,4 @@
-/* spreadmap plugin ABI, version 5 (2: PairList::upper; 3: its flat upper pairs, per-entry records; 4: Particles::team; 5: TeamSlot::cuts). Plain C: nothing C++ crosses a shared-library boundary.
+/* spreadmap plugin ABI, version 6 (2: PairList::upper; 3: its flat upper pairs, per-entry records; 4: Particles::team; 5: TeamSlot::cuts; 6: spreaders describe themselves, sm_spreader_ops_v2). Plain C: nothing C++ crosses a shared-library boundary.
  * Every plugin exports exactly one symbol, `spreadmap_plugin_v1`, returning a pointer to a static
  * descriptor whose first field is the ABI number; the host checks it before touching anything else.
  * Bump SPREADMAP_PLUGIN_ABI on any change of layout in this file or in a kind's ops table. */
@@ -7,7 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#define SPREADMAP_PLUGIN_ABI 5u
+#define SPREADMAP_PLUGIN_ABI 6u
 
 #if defined(_WIN32)
 #define SM_EXPORT __declspec(dllexport)

@@ -1,14 +1,20 @@
-// Spreader geometries: analytic moving surfaces. The plugin's functor answers, for one sphere at
+// Spreader geometries: analytic moving rigid bodies. The plugin's functor answers, for one sphere at
 // time t, whether it touches the surface and with what overlap, normal and surface velocity; the
 // SDK loop fills the dense per-particle WallContacts record that contact laws consume. Laws and
 // geometries therefore combine freely, with no template cross product.
 //
+// A spreader also describes itself, so that the host needs to know none by name: its cross-section
+// (for figures), its travel and speed (for the run's duration and the layer's V_s), its pose at any
+// time (for figures and the sleeping region), and whether a sphere touches it (for the heap set-up,
+// which keeps a clearance from the spreader at rest). Time t counts from the start of spreading; a
+// spreader rests, with no surface velocity, for t < 0 (the host settles the heap there).
+//
 // A geometry provides:
 //   static constexpr sm_param_v1 params[];  static Geometry bind(const sm::Values &);
 //   template <class Real> SM_HD bool operator()(const Vec3<Real>& centre, Real radius, Real t, WallHit<Real>&) const;
-//   double duration() const;              seconds from the start to the end of its travel
-//   double max_surface_speed() const;     largest speed of any surface point [m/s]
-//   void pose(double t, sm_pose_v1 *) const;  where it is at time t (figures, checks)
+//   double max_surface_speed() const;                  largest speed of any surface point [m/s]
+//   void describe(sm_spreader_description_v2 *) const; outline, travel (see below)
+//   void pose(double t, sm_spreader_pose_v2 *) const;  where it is at time t
 #pragma once
 #include <spreadmap/batch.hpp>
 #include <spreadmap/hd.hpp>
@@ -26,26 +32,42 @@ template <class Real> struct WallHit {
 };
 
 extern "C" {
-// Where a spreader is, for figures and checks. shape: "cylinder" (axis along y) or "blade".
-typedef struct sm_pose_v1 {
-  char shape[16];
-  double centre[3];   // roller axis point, or the blade's lowest edge point [m]
-  double radius;      // roller radius, or blade edge radius [m]
-  double length;      // extent along y [m]
-  double thickness;   // blade thickness along x [m] (0 for a roller)
-  double height;      // blade height above its edge [m] (0 for a roller)
-  double angle;       // roller rotation angle about +y since the start [rad]
-  double velocity[3]; // translation velocity [m/s]
-  double omega;       // angular velocity about +y [rad/s]
-} sm_pose_v1;
+// Most vertices of a spreader's cross-section.
+#define SM_OUTLINE_MAX 192
 
-typedef struct sm_geometry_ops_v1 {
+// What a spreader is, independent of time. Its body is the polygon (x[k], z[k]), counter-clockwise,
+// in the body frame (relative to the reference point, unrotated), extruded along y over
+// |y - y_centre| <= length / 2. The figures draw it; `turns` asks them to mark its rotation.
+typedef struct sm_spreader_description_v2 {
+  uint32_t vertices;
+  double x[SM_OUTLINE_MAX], z[SM_OUTLINE_MAX];  // [m]
+  double y_centre, length;                      // [m]
+  int turns;                                    // 1: it rotates about the reference point
+  double start, end;   // x of the reference point before (t <= 0) and after its travel [m]
+  double speed;        // U: translation speed while spreading [m/s] (the layer's V_s = mean height x U)
+  double duration;     // seconds from t = 0 to the end of its travel
+  double gap;          // height of its lowest point above the substrate z = 0 [m]
+} sm_spreader_description_v2;
+
+// Where a spreader is at time t: the reference point, the rotation of the body about +y through it
+// (right-hand rule: > 0 turns +z towards +x), their rates, and the body's extent along x.
+typedef struct sm_spreader_pose_v2 {
+  double reference[3];  // [m]
+  double angle;         // since the start [rad]
+  double velocity[3];   // of the reference point [m/s]
+  double omega;         // about +y [rad/s]
+  double x_min, x_max;  // [m]
+} sm_spreader_pose_v2;
+
+typedef struct sm_spreader_ops_v2 {
   void (*contacts_f64)(const void *self, const Particles<double> *p, WallContacts<double> *out);
   void (*contacts_f32)(const void *self, const Particles<float> *p, WallContacts<float> *out);
-  double (*duration)(const void *self);
   double (*max_surface_speed)(const void *self);
-  void (*pose)(const void *self, double t, sm_pose_v1 *out);
-} sm_geometry_ops_v1;
+  void (*describe)(const void *self, sm_spreader_description_v2 *out);
+  void (*pose)(const void *self, double t, sm_spreader_pose_v2 *out);
+  // 1 when a sphere (centre, radius) at time t overlaps the body.
+  int (*touches)(const void *self, double t, const double centre[3], double radius);
+} sm_spreader_ops_v2;
 }
 
 // Particle i's dense wall-contact record for this geometry at time p.t. The body of both backends'
@@ -72,10 +94,20 @@ template <class G> struct GeometryOps {
   static const G &geo(const void *s) { return *static_cast<const G *>(s); }
   static void c64(const void *s, const Particles<double> *p, WallContacts<double> *w) { geometry_loop(geo(s), *p, *w); }
   static void c32(const void *s, const Particles<float> *p, WallContacts<float> *w) { geometry_loop(geo(s), *p, *w); }
-  static double duration(const void *s) { return geo(s).duration(); }
   static double speed(const void *s) { return geo(s).max_surface_speed(); }
-  static void pose(const void *s, double t, sm_pose_v1 *out) { geo(s).pose(t, out); }
-  static constexpr sm_geometry_ops_v1 table = {&c64, &c32, &duration, &speed, &pose};
+  static void describe(const void *s, sm_spreader_description_v2 *out) {
+    *out = sm_spreader_description_v2{};
+    geo(s).describe(out);
+  }
+  static void pose(const void *s, double t, sm_spreader_pose_v2 *out) {
+    *out = sm_spreader_pose_v2{};
+    geo(s).pose(t, out);
+  }
+  static int touches(const void *s, double t, const double *c, double radius) {
+    WallHit<double> hit{0, {0, 0, 1}, {0, 0, 0}};
+    return geo(s)(Vec3<double>{c[0], c[1], c[2]}, radius, t, hit) && hit.overlap > 0 ? 1 : 0;
+  }
+  static constexpr sm_spreader_ops_v2 table = {&c64, &c32, &speed, &describe, &pose, &touches};
 };
 }  // namespace detail
 }  // namespace spreadmap

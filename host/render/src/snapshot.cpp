@@ -1,5 +1,5 @@
 // Particles coloured by speed, the substrate and the spreader, seen obliquely from the front-left
-// and above so that the heap, the spread layer and the roller's stripe are all visible.
+// and above so that the heap, the spread layer and the spreader's turning stripe are all visible.
 // Geometry is drawn in millimetres; speed in mm/s.
 #include "canvas2d.hpp"
 #include "figure.hpp"
@@ -152,7 +152,7 @@ void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, 
   const double lx = (d.hi[0] - d.lo[0]) * mm;
   double top = d.lo[2] * mm;
   for (std::size_t i = 0; i < in.z.size(); ++i) top = std::max(top, (in.z[i] + in.r[i]) * mm);
-  if (in.spreader.shape == "cylinder") top = std::max(top, (in.spreader.centre[2] + in.spreader.radius) * mm);
+  if (!in.spreader.outline_x.empty()) top = std::max(top, spreader_top(in.spreader) * mm);
   top = std::min(top, d.hi[2] * mm);
   const double cz = d.lo[2] * mm + 0.35 * (top - d.lo[2] * mm);
   auto* cam = ren->GetActiveCamera();

@@ -21,8 +21,10 @@ double largest_speed(const SnapshotInput& in);
 void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, const Options& opt,
                      double speed_top);
 
-// Roller (cylinder with a stripe showing its angle, and a spoke on its front face) or blade (box),
-// in millimetres; clipped to the domain's y extent.
-std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderPose& pose, const Box& domain);
+// The spreader's body (its outline extruded along y, clipped to the domain's y extent; a stripe and
+// a spoke showing its angle when it turns), in millimetres.
+std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderShape& spreader, const Box& domain);
+// Height of the body's highest point, as placed and turned [m].
+double spreader_top(const SpreaderShape& spreader);
 
 }  // namespace spreadmap::render::detail

@@ -1,19 +1,22 @@
-// The spreader as drawn in snapshots: a roller is a grey cylinder with one red stripe along its
-// length and a red spoke on its front face, both at the roller's angle, so successive frames show
-// it turning; a blade is a box. Millimetres.
+// The spreader as drawn in snapshots, whatever its kind: its cross-section extruded along y, placed
+// and turned as the plugin's pose says. A body that turns gets a red stripe along its length and a
+// red spoke on its front face, both at its angle, so successive frames show it turning. Millimetres.
 #include "snapshot_scene.hpp"
 
 #include <algorithm>
 #include <cmath>
 
+#include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkCubeSource.h>
-#include <vtkCylinderSource.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkPolyDataNormals.h>
 #include <vtkProperty.h>
 #include <vtkTransform.h>
 #include <vtkTransformPolyDataFilter.h>
+#include <vtkTriangleFilter.h>
 #include <vtkUnsignedCharArray.h>
 
 namespace spreadmap::render::detail {
@@ -39,88 +42,96 @@ vtkSmartPointer<vtkActor> actor_of(vtkAlgorithmOutput* port, bool cell_colours) 
   return a;
 }
 
-std::pair<double, double> y_extent(const SpreaderPose& p, const Box& d) {
-  if (!(p.length > 0)) return {d.lo[1], d.hi[1]};
-  return {std::max(p.centre[1] - 0.5 * p.length, d.lo[1]), std::min(p.centre[1] + 0.5 * p.length, d.hi[1])};
+std::pair<double, double> y_extent(const SpreaderShape& s, const Box& d) {
+  if (!(s.length > 0)) return {d.lo[1], d.hi[1]};
+  return {std::max(s.y_centre - 0.5 * s.length, d.lo[1]), std::min(s.y_centre + 0.5 * s.length, d.hi[1])};
 }
 
-std::vector<vtkSmartPointer<vtkActor>> roller(const SpreaderPose& p, const Box& d) {
-  if (!(p.radius > 0)) throw RenderError("render: snapshot spreader 'cylinder' needs radius > 0 (m)");
-  const auto [y0, y1] = y_extent(p, d);
-  const double r = p.radius * mm, len = (y1 - y0) * mm, yc = 0.5 * (y0 + y1) * mm;
-  vtkNew<vtkCylinderSource> cyl;  // axis along y, centred at the origin
-  cyl->SetRadius(r);
-  cyl->SetHeight(len);
-  cyl->SetResolution(72);
-  cyl->CappingOn();
-  cyl->Update();
-  vtkPolyData* pd = cyl->GetOutput();
+// The prism in the body frame (mm), y from y0 to y1: a side quad per outline edge and two caps.
+// Cell colours: caps darker; on a turning body, the side quads facing within 9 degrees of +z red.
+vtkSmartPointer<vtkPolyData> prism(const SpreaderShape& s, double y0, double y1) {
+  const vtkIdType n = static_cast<vtkIdType>(s.outline_x.size());
+  vtkNew<vtkPoints> points;
+  for (vtkIdType k = 0; k < n; ++k) {
+    points->InsertNextPoint(s.outline_x[k] * mm, y0 * mm, s.outline_z[k] * mm);
+    points->InsertNextPoint(s.outline_x[k] * mm, y1 * mm, s.outline_z[k] * mm);
+  }
+  vtkNew<vtkCellArray> cells;
   vtkNew<vtkUnsignedCharArray> colours;
   colours->SetNumberOfComponents(3);
   colours->SetName("colour");
   const double stripe_half_width = 9.0 / deg;
-  for (vtkIdType c = 0; c < pd->GetNumberOfCells(); ++c) {
-    double b[6];
-    pd->GetCell(c)->GetBounds(b);
-    const double x = 0.5 * (b[0] + b[1]), z = 0.5 * (b[4] + b[5]);
-    const bool side = std::hypot(x, z) > 0.5 * r;
-    // Angle from +z towards +x: the stripe at angle 0 is on top, moving forward as the angle grows.
-    const double a = std::remainder(std::atan2(x, z) - p.angle, 2 * pi);
-    if (side && std::abs(a) < stripe_half_width) colours->InsertNextTuple3(210, 30, 30);
-    else if (side) colours->InsertNextTuple3(150, 155, 165);
-    else colours->InsertNextTuple3(120, 125, 135);
+  for (vtkIdType k = 0; k < n; ++k) {
+    const vtkIdType j = (k + 1) % n;
+    const vtkIdType quad[4] = {2 * k, 2 * j, 2 * j + 1, 2 * k + 1};
+    cells->InsertNextCell(4, quad);
+    const double xm = 0.5 * (s.outline_x[k] + s.outline_x[j]), zm = 0.5 * (s.outline_z[k] + s.outline_z[j]);
+    if (s.turns && std::abs(std::atan2(xm, zm)) < stripe_half_width) colours->InsertNextTuple3(210, 30, 30);
+    else colours->InsertNextTuple3(150, 155, 165);
   }
+  for (int end = 0; end < 2; ++end) {
+    std::vector<vtkIdType> cap;
+    for (vtkIdType k = 0; k < n; ++k) cap.push_back(2 * (end ? k : n - 1 - k) + end);  // outward facing
+    cells->InsertNextCell(n, cap.data());
+    colours->InsertNextTuple3(120, 125, 135);
+  }
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
+  pd->SetPoints(points);
+  pd->SetPolys(cells);
   pd->GetCellData()->SetScalars(colours);
-  vtkNew<vtkTransform> place;
-  place->Translate(p.centre[0] * mm, yc, p.centre[2] * mm);
-  vtkNew<vtkTransformPolyDataFilter> body;
-  body->SetInputData(pd);
-  body->SetTransform(place);
+  return pd;
+}
 
-  // Spoke on the front face (the camera looks from -y): centre to rim at the roller's angle.
+double largest_extent(const SpreaderShape& s) {
+  double r = 0;
+  for (std::size_t k = 0; k < s.outline_x.size(); ++k) r = std::max(r, std::hypot(s.outline_x[k], s.outline_z[k]));
+  return r;
+}
+}  // namespace
+
+std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderShape& s, const Box& d) {
+  if (s.outline_x.empty()) return {};
+  if (s.outline_x.size() < 3 || s.outline_x.size() != s.outline_z.size())
+    throw RenderError("render: a spreader's outline needs at least 3 vertices, with as many x as z");
+  const auto [y0, y1] = y_extent(s, d);
+  vtkNew<vtkTransform> place;  // body frame -> world: turned about +y, then moved to the reference
+  place->Translate(s.reference[0] * mm, 0, s.reference[2] * mm);
+  place->RotateY(s.angle * deg);  // right-hand rotation about +y: +z turns towards +x
+  vtkNew<vtkTriangleFilter> triangles;  // caps of any (also concave) outline
+  triangles->SetInputData(prism(s, y0, y1));
+  vtkNew<vtkPolyDataNormals> normals;  // smooth across gently curved sides, sharp at the caps
+  normals->SetInputConnection(triangles->GetOutputPort());
+  normals->SetFeatureAngle(30);
+  vtkNew<vtkTransformPolyDataFilter> body;
+  body->SetInputConnection(normals->GetOutputPort());
+  body->SetTransform(place);
+  std::vector<vtkSmartPointer<vtkActor>> actors{actor_of(body->GetOutputPort(), true)};
+  if (!s.turns) return actors;
+
+  // Spoke on the front face (the camera looks from -y): reference point to rim at the body's angle.
+  const double r = largest_extent(s) * mm;
   vtkNew<vtkCubeSource> spoke;
   spoke->SetXLength(0.12 * r);
   spoke->SetYLength(0.02 * r);
   spoke->SetZLength(0.95 * r);
   spoke->SetCenter(0, 0, 0.475 * r);
   vtkNew<vtkTransform> turn;
-  turn->Translate(p.centre[0] * mm, yc - 0.5 * len - 0.011 * r, p.centre[2] * mm);
-  turn->RotateY(p.angle * deg);  // right-hand rotation about +y: +z turns towards +x
+  turn->Translate(s.reference[0] * mm, y0 * mm - 0.011 * r, s.reference[2] * mm);
+  turn->RotateY(s.angle * deg);
   vtkNew<vtkTransformPolyDataFilter> spoke_placed;
   spoke_placed->SetInputConnection(spoke->GetOutputPort());
   spoke_placed->SetTransform(turn);
-
-  auto body_actor = actor_of(body->GetOutputPort(), true);
   auto spoke_actor = actor_of(spoke_placed->GetOutputPort(), false);
   spoke_actor->GetProperty()->SetColor(0.82, 0.12, 0.12);
-  return {body_actor, spoke_actor};
+  actors.push_back(spoke_actor);
+  return actors;
 }
 
-std::vector<vtkSmartPointer<vtkActor>> blade(const SpreaderPose& p, const Box& d) {
-  if (!(p.thickness > 0) || !(p.height > 0))
-    throw RenderError("render: snapshot spreader 'blade' needs thickness > 0 and height > 0 (m)");
-  const auto [y0, y1] = y_extent(p, d);
-  vtkNew<vtkCubeSource> box;
-  box->SetXLength(p.thickness * mm);
-  box->SetYLength((y1 - y0) * mm);
-  box->SetZLength(p.height * mm);
-  vtkNew<vtkTransform> place;
-  place->Translate(p.centre[0] * mm, 0.5 * (y0 + y1) * mm, p.centre[2] * mm);
-  place->RotateY(p.angle * deg);
-  vtkNew<vtkTransformPolyDataFilter> placed;
-  placed->SetInputConnection(box->GetOutputPort());
-  placed->SetTransform(place);
-  auto a = actor_of(placed->GetOutputPort(), false);
-  a->GetProperty()->SetColor(0.55, 0.58, 0.65);
-  return {a};
-}
-}  // namespace
-
-std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderPose& pose, const Box& domain) {
-  if (pose.shape.empty() || pose.shape == "none") return {};
-  if (pose.shape == "cylinder" || pose.shape == "roller") return roller(pose, domain);
-  if (pose.shape == "blade") return blade(pose, domain);
-  throw RenderError("render: snapshot spreader shape '" + pose.shape + "' is not one of cylinder, blade, none");
+double spreader_top(const SpreaderShape& s) {
+  double top = -1e300;
+  const double c = std::cos(s.angle), sn = std::sin(s.angle);
+  for (std::size_t k = 0; k < s.outline_x.size(); ++k) top = std::max(top, s.reference[2] - s.outline_x[k] * sn + s.outline_z[k] * c);
+  return top;
 }
 
 }  // namespace spreadmap::render::detail

@@ -10,11 +10,11 @@
 #include <spreadmap/geometry.hpp>
 #include <spreadmap/params.hpp>
 
-#include <cstdio>
-#include <string>
+#include <spreadmap/spreader/extruded_profile.hpp>
+#include <spreadmap/spreader/outline.hpp>
+#include <spreadmap/spreader/travel.hpp>
 
-#include "../common/extruded_profile.hpp"
-#include "../common/travel.hpp"
+#include <string>
 
 namespace spreadmap::spreader {
 
@@ -83,20 +83,30 @@ struct Blade {
     return true;
   }
 
-  double duration() const { return travel.duration; }
   double max_surface_speed() const { return travel.speed; }
 
-  void pose(double t, sm_pose_v1 *out) const {
-    *out = sm_pose_v1{};
-    std::snprintf(out->shape, sizeof out->shape, "%s", "blade");
-    out->centre[0] = travel.x(t);
-    out->centre[1] = y_centre;
-    out->centre[2] = gap;
-    out->radius = edge_radius;
+  // The rounded rectangle about the reference point, the middle of its lowest edge (z = gap).
+  void describe(sm_spreader_description_v2 *out) const {
+    constexpr double quarter = 1.5707963267948966;
+    const double hx = half_thickness, top = 2 * half_height, rho = edge_radius;
+    add_arc(out, -hx + rho, rho, rho, 2 * quarter, 3 * quarter, 8);  // lower back edge
+    add_arc(out, hx - rho, rho, rho, 3 * quarter, 4 * quarter, 8);   // lower front edge
+    add_vertex(out, hx, top);
+    add_vertex(out, -hx, top);
+    out->y_centre = y_centre;
     out->length = length;
-    out->thickness = 2 * half_thickness;
-    out->height = 2 * half_height;
+    out->turns = 0;
+    travel.describe(out);
+    out->gap = gap;
+  }
+
+  void pose(double t, sm_spreader_pose_v2 *out) const {
+    out->reference[0] = travel.x(t);
+    out->reference[1] = y_centre;
+    out->reference[2] = gap;
     out->velocity[0] = travel.velocity(t);
+    out->x_min = out->reference[0] - half_thickness;
+    out->x_max = out->reference[0] + half_thickness;
   }
 };
 

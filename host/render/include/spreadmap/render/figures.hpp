@@ -35,25 +35,26 @@ struct Box {
   std::array<double, 3> hi{0, 0, 0};
 };
 
-// Spreader pose as the engine knows it (SI). The roller's axis is y; angle is its rotation about
-// +y (right-hand rule, radians): the drawn stripe sits on top (+z) at angle 0 and moves towards +x
-// as the angle grows, as for a wheel rolling forward. A blade is a box thickness (x) x length (y)
-// x height (z) centred at `centre`, tilted by `angle` about +y.
-struct SpreaderPose {
-  std::string shape = "cylinder";  // "cylinder" | "blade" | "" (none drawn)
-  std::array<double, 3> centre{0, 0, 0};
-  double radius = 0;     // cylinder [m]
-  double length = 0;     // along y [m]; drawn clipped to the domain's y extent
-  double thickness = 0;  // blade, along x [m]
-  double height = 0;     // blade, along z [m]
-  double angle = 0;      // [rad]
+// The spreader as drawn (SI), whatever its kind: its cross-section, a polygon (outline_x[k],
+// outline_z[k]) in the x–z plane of the body frame, counter-clockwise, extruded along y over
+// |y - y_centre| <= length / 2 (clipped to the domain's y extent; length 0: the whole extent),
+// placed with the body frame's origin at `reference` and turned by `angle` about +y (right-hand
+// rule, radians: +z turns towards +x, as for a wheel rolling forward). A body that `turns` is drawn
+// with a red stripe along its length (on top at angle 0) and a red spoke on its front face, so that
+// successive frames show it turning. No outline: nothing drawn.
+struct SpreaderShape {
+  std::vector<double> outline_x, outline_z;  // [m]
+  std::array<double, 3> reference{0, 0, 0};  // [m]
+  double y_centre = 0, length = 0;           // [m]
+  double angle = 0;                          // [rad]
+  bool turns = false;
 };
 
 struct SnapshotInput {
   std::vector<double> x, y, z, r;  // particle centres and radii [m]
   std::vector<double> speed;       // [m/s], coloured (drawn in mm/s)
   Box domain;                      // the substrate is drawn at z = domain.lo[2]
-  SpreaderPose spreader;
+  SpreaderShape spreader;
   double speed_max = 0;            // colour-bar top [m/s]; 0 = largest speed in the input
 };
 

@@ -1,4 +1,5 @@
-// Straight travel of a spreader along +x, shared by the roller and the blade.
+// Straight travel of a spreader along +x: the part of a spreader's parameters and motion that every
+// straight-travelling spreader shares (start, U, travel or end).
 //
 // Time t is the time since the spreader started (the engine passes Particles::t, offset by the host).
 // The spreader rests at `start` for t < 0, moves at U for 0 <= t < duration, and rests at
@@ -7,6 +8,7 @@
 // stops at, which must exceed `start`). `end` = 0 means "not given": a scene whose spreader
 // must stop exactly at x = 0 gives `travel` instead.
 #pragma once
+#include <spreadmap/geometry.hpp>
 #include <spreadmap/hd.hpp>
 #include <spreadmap/params.hpp>
 
@@ -25,10 +27,11 @@ inline std::string text_of(double v) {
 }
 
 struct Travel {
-  double start;     // x of the reference (roller axis, blade mid-plane) at t <= 0 [m]
+  double start;     // x of the reference point (e.g. an axis, a mid-plane) at t <= 0 [m]
   double speed;     // U [m/s], > 0
   double distance;  // travel [m], >= 0
   double duration;  // distance / speed [s]
+  double end;       // start + distance, or `end` as given [m]
 
   // Time spent moving by time t, in [0, duration].
   template <class Real> SM_HD Real elapsed(Real t) const {
@@ -44,6 +47,14 @@ struct Travel {
     return moving(t) ? static_cast<Real>(speed) : Real(0);
   }
 
+  // Host only: the travel part of the spreader's description.
+  void describe(sm_spreader_description_v2 *out) const {
+    out->start = start;
+    out->end = end;
+    out->speed = speed;
+    out->duration = duration;
+  }
+
   // Host only. Reads start, U, travel and end.
   static Travel bind(const Values &v) {
     const double start = v["start"], speed = v["U"], end = v["end"];
@@ -54,7 +65,7 @@ struct Travel {
                          " m (the spreader moves in +x); or leave end = 0 and give travel");
       distance = end - start;
     }
-    return {start, speed, distance, distance / speed};
+    return {start, speed, distance, distance / speed, end != 0.0 ? end : start + distance};
   }
 };
 
