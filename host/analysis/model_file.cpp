@@ -2,7 +2,8 @@
 
 #include <stdexcept>
 
-#include "atomic_file.hpp"
+#include "core/files.hpp"
+#include "read_file.hpp"
 
 namespace sm = spreadmap;
 
@@ -31,7 +32,7 @@ void save_model_json(const std::string &path, const ModelFile &m) {
                             {"plugin_version", m.plugin_version}, {"params", m.params},
                             {"inputs", to_json(m.inputs)}, {"outputs", to_json(m.outputs)},
                             {"state", m.state}, {"training", m.training}};
-  write_file_atomically(path, j.dump(1) + "\n");
+  write_atomic(path, j.dump(1) + "\n");
 }
 
 ModelFile load_model_json(const std::string &path) {

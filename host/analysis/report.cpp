@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "atomic_file.hpp"
+#include "core/files.hpp"
 #include "scores.hpp"
 
 namespace sm = spreadmap;
@@ -72,7 +72,7 @@ Table Report::to_table() const {
 }
 
 void Report::write(const std::string &json_path, const std::string &csv_path) const {
-  write_file_atomically(json_path, to_json().dump(2) + "\n");
+  write_atomic(json_path, to_json().dump(2) + "\n");
   to_table().write_csv(csv_path);
 }
 

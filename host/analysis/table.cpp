@@ -7,7 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "atomic_file.hpp"
+#include "core/files.hpp"
+#include "read_file.hpp"
 
 namespace sm = spreadmap;
 
@@ -119,7 +120,7 @@ std::string Table::to_csv() const {
   return s;
 }
 
-void Table::write_csv(const std::string &path) const { write_file_atomically(path, to_csv()); }
+void Table::write_csv(const std::string &path) const { write_atomic(path, to_csv()); }
 
 bool Table::has_column(const std::string &name) const {
   const std::string n = lower(name);

@@ -1,44 +1,131 @@
 #include "core/files.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
 #include <fstream>
+#include <random>
 #include <sstream>
+#include <system_error>
 
 #include "core/error.hpp"
 
 namespace spreadmap {
 
-fs::path temporary_beside(const fs::path &path) {
-  static std::atomic<unsigned> counter{0};
-  return path.parent_path() / ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()) + "_" +
-                               std::to_string(counter++) + path.extension().string());
+namespace {
+
+std::error_code last_error() { return {errno, std::generic_category()}; }
+
+// The usual fix for each way a write fails.
+std::string fix_for(const std::error_code &ec) {
+  if (ec == std::errc::no_space_on_device || ec == std::errc::file_too_large || ec.value() == EDQUOT)
+    return "free some disk space (or raise the quota) and run again";
+  if (ec == std::errc::permission_denied || ec == std::errc::operation_not_permitted ||
+      ec == std::errc::read_only_file_system)
+    return "make the folder writable, or write to another folder";
+  if (ec == std::errc::is_a_directory || ec == std::errc::directory_not_empty)
+    return "a folder has this name: move it away";
+  if (ec == std::errc::not_a_directory || ec == std::errc::file_exists)
+    return "a file stands where a folder of this path should be: move it away";
+  return "check that the folder exists and is writable";
 }
 
-void write_atomic_with(const fs::path &path, const std::function<void(const fs::path &)> &write) {
-  if (path.has_parent_path()) fs::create_directories(path.parent_path());
-  const fs::path tmp = temporary_beside(path);
-  try {
-    write(tmp);
-    fs::rename(tmp, path);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw;
+[[noreturn]] void fail(const fs::path &path, const std::string &what, const std::error_code &ec) {
+  throw RunFailure("error: cannot write " + path.string() + ": " + what + " (" + ec.message() + ")\n  " + fix_for(ec));
+}
+
+// Drawn once per process: it separates processes with the same pid on hosts that share a folder.
+std::uint32_t process_random() {
+  static const std::uint32_t r = std::random_device{}();
+  return r;
+}
+
+// Created exclusively (O_EXCL), so no other writer can be holding the same temporary.
+fs::path create_temporary(const fs::path &path) {
+  for (int attempt = 0;; ++attempt) {
+    fs::path tmp = temporary_beside(path);
+    const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    if (fd >= 0) {
+      ::close(fd);
+      return tmp;
+    }
+    if (errno != EEXIST || attempt == 100) fail(path, "cannot create the temporary " + tmp.string(), last_error());
   }
 }
 
-void write_atomic(const fs::path &path, const std::string &content) {
-  write_atomic_with(path, [&](const fs::path &tmp) {
-    std::FILE *f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw RunFailure("cannot write " + tmp.string() + ": check that the folder is writable");
-    const bool ok = std::fwrite(content.data(), 1, content.size(), f) == content.size();
-    const bool flushed = std::fflush(f) == 0 && ::fsync(fileno(f)) == 0;
-    std::fclose(f);
-    if (!ok || !flushed) throw RunFailure("cannot write " + path.string() + ": disk full?");
-  });
+void write_all(const fs::path &path, const fs::path &tmp, std::string_view content) {
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd < 0) fail(path, "cannot open the temporary " + tmp.string(), last_error());
+  while (!content.empty()) {
+    const ssize_t n = ::write(fd, content.data(), content.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::error_code ec = n < 0 ? last_error() : std::make_error_code(std::errc::io_error);
+      ::close(fd);
+      fail(path, "writing the temporary " + tmp.string() + " stopped", ec);
+    }
+    content.remove_prefix(static_cast<std::size_t>(n));
+  }
+  if (::close(fd) != 0) fail(path, "cannot close the temporary " + tmp.string(), last_error());
+}
+
+// The content reaches the disk before the rename, so a power cut cannot leave an empty file under
+// the final name.
+void sync_file(const fs::path &path, const fs::path &tmp) {
+  const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail(path, "the temporary " + tmp.string() + " is gone", last_error());
+  const bool synced = ::fsync(fd) == 0;
+  const std::error_code ec = last_error();
+  ::close(fd);
+  if (!synced) fail(path, "cannot flush the temporary " + tmp.string() + " to disk", ec);
+}
+
+// The rename reaches the disk with its folder. Best effort: the file itself is whole already, and
+// some file systems refuse to sync a folder.
+void sync_folder(const fs::path &path) {
+  const fs::path folder = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  (void)::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+fs::path temporary_beside(const fs::path &path) {
+  static std::atomic<std::uint64_t> count{0};
+  char tag[64];
+  std::snprintf(tag, sizeof tag, ".tmp-%ld-%llu-%08x", static_cast<long>(::getpid()),
+                static_cast<unsigned long long>(count++), static_cast<unsigned>(process_random()));
+  return path.parent_path() / ("." + path.filename().string() + tag + path.extension().string());
+}
+
+void write_atomic_with(const fs::path &path, const std::function<void(const fs::path &)> &write) {
+  if (path.has_parent_path()) {
+    std::error_code ec;
+    fs::create_directories(path.parent_path(), ec);
+    if (ec) fail(path, "cannot create its folder " + path.parent_path().string(), ec);
+  }
+  const fs::path tmp = create_temporary(path);
+  try {
+    write(tmp);
+    sync_file(path, tmp);
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) fail(path, "cannot rename the temporary " + tmp.string() + " over it", ec);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw;
+  }
+  sync_folder(path);
+}
+
+void write_atomic(const fs::path &path, std::string_view content) {
+  write_atomic_with(path, [&](const fs::path &tmp) { write_all(path, tmp, content); });
 }
 
 std::string read_text(const fs::path &path) {

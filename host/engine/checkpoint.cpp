@@ -1,7 +1,7 @@
 // Simulation::save_checkpoint / load_checkpoint. The state is stored exactly as it is in memory
 // (current order, the list with its history and reference positions, forces of the last
 // evaluation), so that a resumed run continues bitwise identically.
-#include <engine/atomic_file.hpp>
+#include <core/files.hpp>
 #include <engine/binary_io.hpp>
 #include <engine/simulation.hpp>
 
@@ -61,7 +61,7 @@ template <class Real> void Simulation<Real>::save_checkpoint(const std::filesyst
     w.value<std::uint8_t>(ge.slot.touched);
     w.array(ge.slot.hist);
   }
-  write_file_atomic(path, w.bytes());
+  write_atomic(path, w.bytes());
 }
 
 template <class Real> void Simulation<Real>::load_checkpoint(const std::filesystem::path &path) {

@@ -106,7 +106,7 @@ template <class Real = double> class Simulation {
   const Settings &settings() const { return settings_; }
 
   // --- checkpoints ---------------------------------------------------------------------------
-  // Everything a bitwise-identical continuation needs, written atomically (path.tmp + rename).
+  // Everything a bitwise-identical continuation needs, written atomically (write_atomic).
   // Call between steps. Before load, add the same plane walls and geometries (and particles are
   // replaced by the checkpoint's); mismatched counts, precision or history sizes are SetupErrors.
   void save_checkpoint(const std::filesystem::path &path) const;

@@ -1,4 +1,4 @@
-#include <engine/atomic_file.hpp>
+#include <core/files.hpp>
 #include <engine/errors.hpp>
 #include <engine/vtp_io.hpp>
 
@@ -88,7 +88,7 @@ void write_vtp(const std::filesystem::path &path, const ParticleSet &s, double t
   }
   out += "        </DataArray>\n      </Verts>\n";
   out += "    </Piece>\n  </PolyData>\n</VTKFile>\n";
-  write_file_atomic(path, out);
+  write_atomic(path, out);
 }
 
 namespace {
@@ -180,7 +180,7 @@ void write_pvd(const std::filesystem::path &path, const std::vector<SeriesEntry>
     out += fmt::format("\" group=\"\" part=\"0\" file=\"{}\"/>\n", e.file);
   }
   out += "  </Collection>\n</VTKFile>\n";
-  write_file_atomic(path, out);
+  write_atomic(path, out);
 }
 
 }  // namespace spreadmap::engine

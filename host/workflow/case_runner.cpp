@@ -84,9 +84,11 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   auto last_checkpoint = std::chrono::steady_clock::now();
   const auto t0 = last_checkpoint;
   const double steps_before = double(sim.step_count());
+  // The checkpoint before its hash: a crash between the two leaves no hash or another scene's (the
+  // case starts again), never this scene's hash beside another scene's checkpoint.
   auto save_checkpoint = [&] {
-    write_atomic(checkpoint_hash, hash);
     sim.save_checkpoint(checkpoint);
+    write_atomic(checkpoint_hash, hash);
   };
   std::vector<engine::SeriesEntry> series;
   nlohmann::json series_record = nlohmann::json::array();  // with the spreader's pose, for frames

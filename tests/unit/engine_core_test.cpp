@@ -1,6 +1,7 @@
 // Engine mechanics: stability formula, time-step refusal, removal, periodic wrapping, determinism
 // across threads and runs, checkpoint/resume, history carried over list rebuilds.
 #include "engine_test_law.hpp"
+#include "temporaries.hpp"
 
 #include <engine/errors.hpp>
 #include <engine/stability.hpp>
@@ -248,7 +249,7 @@ TEST(EngineCheckpoint, ResumeIsBitwiseIdentical) {
   auto whole = scene.make();
   whole.run_steps(300);
   whole.save_checkpoint(path);
-  EXPECT_FALSE(std::filesystem::exists(path.string() + ".tmp"));
+  EXPECT_TRUE(temporaries_beside(path).empty());
   whole.run_steps(300);
 
   Simulation<double> resumed(scene.domain, bind(scene.pair), quiet());

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "temporaries.hpp"
+
 namespace sm = spreadmap;
 using namespace sm::engine;
 namespace fs = std::filesystem;
@@ -57,7 +59,7 @@ TEST(EngineVtp, RoundTripIsExact) {
   s.id = {7, 3, 4000000000u};
   const fs::path path = temp_dir() / "state.vtp";
   write_vtp(path, s, 0.123456789);
-  EXPECT_FALSE(fs::exists(path.string() + ".tmp"));
+  EXPECT_TRUE(temporaries_beside(path).empty());
   const VtpContent back = read_vtp(path);
   EXPECT_EQ(back.time, 0.123456789);
   EXPECT_EQ(back.particles.x, s.x);

@@ -3,6 +3,7 @@
 // (colour map ends, both contour families of the map), and matches a stored reference image.
 #include "render_fixtures.hpp"
 #include "render_image_check.hpp"
+#include "temporaries.hpp"
 
 #include <gtest/gtest.h>
 
@@ -51,7 +52,7 @@ r::Options small(const std::string& title = "") {
 // Size, non-blank, then the reference comparison (or its regeneration).
 rt::Image check_figure(const std::string& name, const fs::path& png, std::size_t min_colours) {
   EXPECT_TRUE(fs::exists(png)) << png;
-  EXPECT_FALSE(fs::exists(png.string() + ".tmp.png")) << "temporary file left behind";
+  EXPECT_TRUE(temporaries_beside(png).empty()) << "temporary file left behind";
   const rt::Image im = rt::read_png(png);
   EXPECT_EQ(im.width, ref_width);
   EXPECT_EQ(im.height, ref_height);
@@ -189,6 +190,7 @@ TEST(RenderFigures, VectorCopyWhenGl2psIsAvailable) {
   r::parity(rt::two_output_parity(), out_dir() / "parity_vector.png", o);
   EXPECT_TRUE(fs::exists(out_dir() / "parity_vector.svg"));
   EXPECT_GT(fs::file_size(out_dir() / "parity_vector.svg"), 1000u);
+  EXPECT_TRUE(temporaries_beside(out_dir() / "parity_vector.svg").empty());
 }
 
 TEST(RenderFigures, BadInputsAreRefusedWithASentence) {

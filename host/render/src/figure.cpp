@@ -2,7 +2,10 @@
 
 #include "offscreen_display.hpp"
 
+#include <core/files.hpp>
+
 #include <filesystem>
+#include <functional>
 #include <system_error>
 
 #ifdef SPREADMAP_RENDER_GL2PS
@@ -22,6 +25,23 @@ namespace {
 std::mutex rendering_mutex;
 const char* dejavu_sans = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 const char* dejavu_sans_bold = "/usr/share/fonts/truetype/dejavu/DejaVuSans-Bold.ttf";
+
+// Through the host's one atomic writer; its own failures become RenderErrors, like every error here.
+void write_file(const fs::path& target, const std::function<void(const fs::path& tmp)>& write) {
+  try {
+    sm::write_atomic_with(target, write);
+  } catch (const RenderError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw RenderError(e.what());
+  }
+}
+
+bool empty_file(const fs::path& file) {
+  std::error_code ec;
+  const auto size = fs::file_size(file, ec);
+  return ec || size == 0;
+}
 }  // namespace
 
 std::unique_lock<std::mutex> lock_rendering() { return std::unique_lock(rendering_mutex); }
@@ -88,10 +108,6 @@ void Figure::add_title() {
 }
 
 void Figure::write(const fs::path& png) {
-  if (png.has_parent_path()) {
-    std::error_code ec;
-    fs::create_directories(png.parent_path(), ec);
-  }
   window_->Render();
   vtkNew<vtkWindowToImageFilter> grab;
   grab->SetInput(window_);
@@ -103,16 +119,14 @@ void Figure::write(const fs::path& png) {
     throw RenderError("render: the X server gave a " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) +
                       " image instead of " + std::to_string(opt_.width) + "x" + std::to_string(opt_.height) +
                       " for " + png.string() + "; use a smaller figure or a larger screen");
-  const fs::path tmp = fs::path(png.string() + ".tmp.png");
-  vtkNew<vtkPNGWriter> writer;
-  writer->SetFileName(tmp.c_str());
-  writer->SetInputConnection(grab->GetOutputPort());
-  writer->Write();
-  if (writer->GetErrorCode() != 0 || !fs::exists(tmp))
-    throw RenderError("render: cannot write " + tmp.string() + "; check that the folder is writable");
-  std::error_code ec;
-  fs::rename(tmp, png, ec);
-  if (ec) throw RenderError("render: cannot rename " + tmp.string() + " to " + png.string() + ": " + ec.message());
+  write_file(png, [&](const fs::path& tmp) {
+    vtkNew<vtkPNGWriter> writer;
+    writer->SetFileName(tmp.c_str());
+    writer->SetInputConnection(grab->GetOutputPort());
+    writer->Write();
+    if (writer->GetErrorCode() != 0 || empty_file(tmp))
+      throw RenderError("render: cannot write " + png.string() + "; check that the folder is writable and has space");
+  });
 
   if (!opt_.vector_format.empty()) {
 #ifndef SPREADMAP_RENDER_GL2PS
@@ -131,10 +145,15 @@ void Figure::write(const fs::path& png) {
     exporter->SetSortToBSP();
     exporter->DrawBackgroundOn();
     exporter->Write3DPropsAsRasterImageOff();
-    fs::path prefix = png;
-    prefix.replace_extension();
-    exporter->SetFilePrefix(prefix.c_str());
-    exporter->Write();
+    fs::path copy = png;
+    copy.replace_extension(f);
+    write_file(copy, [&](const fs::path& tmp) {
+      fs::path prefix = tmp;  // the exporter appends "." + f to its prefix
+      prefix.replace_extension();
+      exporter->SetFilePrefix(prefix.c_str());
+      exporter->Write();
+      if (empty_file(tmp)) throw RenderError("render: gl2ps wrote nothing for " + copy.string() + "; leave vector_format empty");
+    });
 #endif
   }
 }

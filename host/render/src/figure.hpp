@@ -1,5 +1,5 @@
 // One off-screen figure: a render window of the requested size with one white renderer, written
-// to PNG atomically. Also the small shared vocabulary of all figures: text style, display units.
+// to PNG atomically (write_atomic_with). Also the small shared vocabulary of all figures: text style, display units.
 #pragma once
 
 #include <spreadmap/render/figures.hpp>

@@ -1,6 +1,7 @@
 // Off-screen figures of spreadmap (VTK 9.1). Inputs are plain structs in SI units; each function
 // converts to display units (mm, mm/s, um, mm^2/s), renders off-screen and writes a PNG of exactly
-// options.width x options.height pixels, atomically: it renders to "<path>.tmp.png" and renames.
+// options.width x options.height pixels, atomically (the host's write_atomic_with: a temporary
+// beside the file, synced and renamed over it; vector copies the same way).
 //
 // Display: when DISPLAY is unset the first figure starts a private Xvfb (one per process, stopped
 // at exit); see offscreen_display.hpp. Figures are rendered one at a time: every function may be
