@@ -1,5 +1,5 @@
 // `spreadmap run WORKFLOW --executor mpi|slurm`: the same workflow, its simulate stage's cases run
-// on MPI ranks or as Slurm array tasks. The local executor is run_workflow itself.
+// on MPI ranks or as Slurm array tasks. The local executor is run_workflow's default.
 #pragma once
 #include <filesystem>
 #include <string>

@@ -10,6 +10,7 @@
 #include "cluster/heap_order.hpp"
 #include "core/error.hpp"
 #include "core/stop.hpp"
+#include "workflow/local_executor.hpp"
 #include "workflow/progress.hpp"
 
 namespace spreadmap::cluster {
@@ -26,23 +27,9 @@ void MpiDispatcher::run_cases(CaseBatch &batch, StageContext &ctx) {
   hand_out(batch, ctx);
 }
 
-// One rank: the cases one after another, here.
+// One rank: the cases one after another, here, with the rank's share of its node.
 void MpiDispatcher::run_alone(CaseBatch &batch, StageContext &ctx) {
-  Progress progress("simulate", batch.jobs.size(), ctx.options.quiet);
-  for (std::size_t k = 0; k < batch.jobs.size(); ++k) {
-    if (stop_requested()) throw Interrupted("interrupted: finished cases are kept; run the same command again to resume");
-    CaseJob &job = batch.jobs[k];
-    job.request.threads = rank_threads(job.request.scene, threads_, mpi_.computing_ranks_on_node());
-    job.request.progress = [&progress, k, id = job.request.id](double f, const std::string &d) {
-      progress.update(k, f, id + " " + d);
-    };
-    const CaseOutcome o = run_case_job(job, ctx.registry);
-    if (!o.ok) throw_outcome(o, "");
-    record_outcome(ctx.run, o);
-    progress.done_item();
-    log_done(o);
-  }
-  progress.finish();
+  LocalExecutor(1, rank_threads(ctx.scene, threads_, mpi_.computing_ranks_on_node())).run_cases(batch, ctx);
 }
 
 // Several ranks: answer each worker's request with the next case it may start. A case whose heap
@@ -105,8 +92,8 @@ void MpiDispatcher::hand_out(CaseBatch &batch, StageContext &ctx) {
     settling.erase(heap_key(batch.jobs[r->second], ctx.registry));
     running.erase(r);
     if (!o.ok) {
-      spdlog::error("{}{}: {}", o.id, on_rank(o), o.error);
-      if (!failure) failure = o;
+      if (failure || !running.empty()) log_failure(o, on_rank(o));
+      if (!failure) failure = o;  // thrown once the running cases are in
       continue;
     }
     record_outcome(ctx.run, o);

@@ -58,7 +58,7 @@ void run_adaptive_design(StageContext &ctx, const Design &design, bool render) {
     req.dir = ctx.run.case_dir(req.id);
     req.heaps = ctx.run.heaps();
     bool ran_now = false;
-    ensure_case(ctx, req, render, ran_now);
+    ensure_case(ctx, req, render, ran_now, "simulate");
     ++(ran_now ? ran : reused);
     const auto r = measure_case_layer(ctx.registry, req.scene, req.dir);
     Eigen::VectorXd y(Eigen::Index(design.outputs.size()));

@@ -1,48 +1,34 @@
 #include "workflow/case_once.hpp"
-#include "workflow/coarse_grain.hpp"
-
-#include <chrono>
 
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "core/stop.hpp"
 #include "workflow/case_setup.hpp"
-#include "workflow/figures.hpp"
+#include "workflow/coarse_grain.hpp"
+#include "workflow/local_executor.hpp"
 
 namespace spreadmap {
 
-nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool render, bool &ran) {
+nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool render, bool &ran, const std::string &stage) {
   const std::string hash = case_hash(req.scene);
-  ran = false;
-  if (ctx.options.force || !case_finished(req.dir, hash)) {
+  ran = ctx.options.force || !case_finished(req.dir, hash);
+  ctx.run.update_manifest([&](nlohmann::json &m) {
+    if (!m.contains("cases")) m["cases"] = nlohmann::json::array();
+    auto &cases = m["cases"];
+    for (auto it = cases.begin(); it != cases.end(); ++it)
+      if (it->value("id", "") == req.id) {
+        if (!ran) return;  // finished: its record stays
+        cases.erase(it);
+        break;
+      }
+    cases.push_back({{"id", req.id}, {"inputs", req.inputs}, {"hash", hash}});  // the executor adds the outcome
+    if (!ran) cases.back()["status"] = "done";
+  });
+  if (ran) {
     write_atomic(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry).dump(2) + "\n");  // as the engine runs it
-    const std::string start = RunDirectory::now_iso();
-    const auto t0 = std::chrono::steady_clock::now();
-    const nlohmann::json record = run_case(req, ctx.registry);
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    ctx.run.update_manifest([&](nlohmann::json &m) {
-      if (!m.contains("cases")) m["cases"] = nlohmann::json::array();
-      auto &cases = m["cases"];
-      for (auto it = cases.begin(); it != cases.end(); ++it)
-        if (it->value("id", "") == req.id) {
-          cases.erase(it);
-          break;
-        }
-      cases.push_back({{"id", req.id}, {"inputs", req.inputs}, {"hash", hash}, {"start", start},
-                       {"end", RunDirectory::now_iso()}, {"wall_seconds", wall}, {"status", "done"}});
-    });
-    if (render)
-      figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, record, req.dir / "snapshot.png",
-                        figures::case_title(req.id, req.inputs));
-    ran = true;
-  } else {
-    ctx.run.update_manifest([&](nlohmann::json &m) {
-      if (!m.contains("cases")) m["cases"] = nlohmann::json::array();
-      for (const auto &c : m["cases"])
-        if (c.value("id", "") == req.id) return;
-      m["cases"].push_back({{"id", req.id}, {"inputs", req.inputs}, {"hash", hash}, {"status", "done"}});
-    });
+    CaseBatch batch{{{0, req, render}}, 1, stage};
+    LocalExecutor(1, ctx.options.case_threads).run_cases(batch, ctx);
   }
   if (stop_requested()) throw Interrupted("interrupted: finished cases are kept; run the same command again to resume");
   return nlohmann::json::parse(read_text(req.dir / "case.json"));

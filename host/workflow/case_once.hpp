@@ -1,4 +1,4 @@
-// One case run to completion in the calling thread, and its layer measured: the building blocks of
+// One case run to completion before the caller goes on, and its layer measured: the building blocks of
 // the stages that decide their next case from the last result (adaptive design, trade study).
 #pragma once
 #include <nlohmann/json.hpp>
@@ -10,10 +10,12 @@
 
 namespace spreadmap {
 
-// Runs the case unless its folder already holds a finished result for the same inputs (or
-// --force), records it in the manifest's case list and draws its snapshot. Returns case.json.
-// `ran` tells whether it was simulated now. Throws Interrupted after SIGINT/SIGTERM.
-nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool render, bool &ran);
+// Runs the case here, through the local executor (one case at a time: the next case depends on this
+// one's result), unless its folder already holds a finished result for the same inputs (or --force);
+// records it in the manifest's case list and draws its snapshot. Returns case.json. `ran` tells
+// whether it was simulated now; `stage` names the progress line. Throws Interrupted after
+// SIGINT/SIGTERM, and the case's failure.
+nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool render, bool &ran, const std::string &stage);
 
 // The layer metrics of a finished case over the scene's default sampling region, with the
 // metrics plugin's default parameters.

@@ -3,10 +3,13 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <mutex>
 
 #include "core/error.hpp"
+#include "cuda/backend.hpp"
 #include "workflow/executor_hook.hpp"
 #include "core/files.hpp"
+#include "workflow/figure_style.hpp"
 #include "workflow/figures.hpp"
 #include "workflow/layer_eval.hpp"
 #include "workflow/run_dir.hpp"
@@ -20,15 +23,40 @@ std::string host_name() {
   return buf;
 }
 
-// The end state as a picture, as the local path draws it; a figure never fails a case.
-void draw_snapshot(const CaseRequest &req) {
+// The end state as a picture: cases/cNNN/snapshot.png, with the spreader where it stopped, and with
+// `render: {frames: true}` the frames of the snapshot series (case.json lists its files and the
+// spreader's pose at each). A figure never fails a case.
+void draw_snapshot(const CaseRequest &req, const nlohmann::json &c) {
   try {
-    const auto record = nlohmann::json::parse(read_text(req.dir / "case.json"));
-    figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, record, req.dir / "snapshot.png",
-                      req.id + ": " + req.inputs.dump());
+    const std::string title = figures::case_title(req.id, req.inputs);
+    figures::snapshot(read_particle_file(req.dir / "state.vtp"), req.scene, c, req.dir / "snapshot.png", title);
+    if (!figures::current_style().frames || !c.contains("series")) return;
+    std::vector<engine::ParticleSet> states;
+    std::vector<nlohmann::json> poses;
+    for (const auto &e : c["series"]) {
+      states.push_back(read_particle_file(req.dir / e["file"].get<std::string>()));
+      poses.push_back(e["spreader"]);
+    }
+    const auto n = figures::frames(states, poses, req.scene, c, req.dir / "frames", title);
+    spdlog::info("{}: {} frames in {}", req.id, n, (req.dir / "frames").string());
   } catch (const std::exception &e) {
     spdlog::warn("{}: snapshot not drawn: {}", req.id, e.what());
   }
+}
+
+// Which backend this process's cases run on, said once by each process that runs cases (every MPI
+// rank and Slurm task for itself). The stage has already refused a backend that cannot be honoured.
+void say_backend_once(const nlohmann::json &scene) {
+  static std::once_flag said;
+  std::call_once(said, [&] {
+    std::string note;
+    try {
+      cuda::choose_backend(scene.value("backend", std::string("auto")), note);
+    } catch (const std::exception &) {
+      return;  // the case's own set-up reports it
+    }
+    spdlog::info("{}", note);
+  });
 }
 
 }  // namespace
@@ -83,37 +111,36 @@ CaseOutcome run_case_job(const CaseJob &job, PluginRegistry &registry) {
   o.start = RunDirectory::now_iso();
   const auto t0 = std::chrono::steady_clock::now();
   try {
+    say_backend_once(job.request.scene);
     o.result = run_case(job.request, registry);
     o.ok = true;
-  } catch (const Error &e) {
-    o.error = e.what();
-    o.exit_code = e.exit_code;
   } catch (const std::exception &e) {
-    o.error = e.what();
-    o.exit_code = exit_failure;
+    set_failure(o, e);
   }
   o.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   o.end = RunDirectory::now_iso();
-  if (o.ok && job.render) draw_snapshot(job.request);
+  if (o.ok && job.render) draw_snapshot(job.request, o.result);
   return o;
 }
 
-int threads_for_case(const nlohmann::json &scene, int requested) {
-  if (requested > 0) return requested;
-  return scene.value("threads", 0);
-}
-
-void run_job_here(CaseJob job, PluginRegistry &registry, int threads) {
-  job.request.threads = threads_for_case(job.request.scene, threads);
-  const CaseOutcome o = run_case_job(job, registry);
-  if (!o.ok) throw_outcome(o, "");
-  log_done(o);
+void set_failure(CaseOutcome &o, const std::exception &e) {
+  o.ok = false;
+  o.error = e.what();
+  const auto *error = dynamic_cast<const Error *>(&e);
+  o.exit_code = error ? error->exit_code : exit_failure;
 }
 
 void log_done(const CaseOutcome &o, const std::string &where) {
   spdlog::info("{} done{}: {} steps, {:.1f} s, {:.3g} particle-steps/s, {} removed", o.id, where,
                o.result.value("steps", 0.0), o.wall_seconds, o.result.value("particle_steps_per_second", 0.0),
                o.result.value("removed", 0.0));
+}
+
+void log_failure(const CaseOutcome &o, const std::string &where) {
+  if (o.exit_code == exit_interrupted)
+    spdlog::info("{}{}: {}", o.id, where, o.error);
+  else
+    spdlog::error("{}{}: {}", o.id, where, o.error);
 }
 
 void record_outcome(RunDirectory &run, const CaseOutcome &outcome) {

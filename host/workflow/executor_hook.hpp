@@ -1,7 +1,9 @@
-// Where the simulate stage's cases run when they do not run here in --jobs threads: MPI ranks or a
-// Slurm job array (host/cluster/). The stage still decides which cases are unfinished; an executor
-// only decides where each of them runs. A case travels between processes as JSON (a CaseJob), and
-// comes back as a CaseOutcome; both are plain data so that any rank can rebuild them.
+// Where the simulate stage's cases run: here in --jobs threads (local_executor.hpp, the default), on
+// MPI ranks or as a Slurm job array (host/cluster/). The stage decides which cases are unfinished; an
+// executor only decides where each of them runs, and every executor records, logs and reports a
+// case's outcome with the functions below, so that resume and failures read the same on all of them.
+// A case travels between processes as JSON (a CaseJob), and comes back as a CaseOutcome; both are
+// plain data so that any rank can rebuild them.
 #pragma once
 #include <cstddef>
 #include <nlohmann/json.hpp>
@@ -41,6 +43,7 @@ struct CaseOutcome {
 struct CaseBatch {
   std::vector<CaseJob> jobs;
   std::size_t total = 0;  // cases in the design, finished ones included
+  std::string label = "simulate";  // of the progress line
 };
 
 class CaseExecutor {
@@ -65,14 +68,15 @@ CaseOutcome outcome_from_json(const nlohmann::json &j);
 // case: the failure is in the outcome, so that a worker can report it and go on.
 CaseOutcome run_case_job(const CaseJob &job, PluginRegistry &registry);
 
-// Runs the job in this process, logs its summary and throws its failure. threads: OpenMP threads;
-// 0 = scene.threads when set, else OpenMP's default (OMP_NUM_THREADS, or the CPUs this process may use).
-void run_job_here(CaseJob job, PluginRegistry &registry, int threads);
-// The threads rule above, for a case about to run here.
-int threads_for_case(const nlohmann::json &scene, int requested);
+// Marks the outcome failed by `e`, with its exit code (an Error's, else exit_failure).
+void set_failure(CaseOutcome &outcome, const std::exception &e);
 
 // "c001 done[ on rank 2 (node7)]: steps, wall time, speed, removed", as the local path says it.
 void log_done(const CaseOutcome &outcome, const std::string &where = "");
+
+// A failed case, logged when it comes unless it is thrown at once (the first failure, with no other
+// case running; main prints that one): as an error, or as a note when the case was interrupted.
+void log_failure(const CaseOutcome &outcome, const std::string &where);
 
 // The case's entry in manifest.json, as the local path writes it (start, end, wall_seconds,
 // status), plus the rank and host it ran on.

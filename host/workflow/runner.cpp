@@ -5,6 +5,7 @@
 #include "core/error.hpp"
 #include "core/suggest.hpp"
 #include "workflow/executor_hook.hpp"
+#include "workflow/local_executor.hpp"
 #include "workflow/scene.hpp"
 #include "workflow/stage.hpp"
 
@@ -38,7 +39,10 @@ Validated validate_workflow(const fs::path &file, PluginRegistry &registry) {
   return v;
 }
 
-int run_workflow(const fs::path &file, const RunOptions &options, PluginRegistry &registry) {
+int run_workflow(const fs::path &file, const RunOptions &given, PluginRegistry &registry) {
+  RunOptions options = given;
+  LocalExecutor local(options.jobs, options.case_threads);
+  if (!options.executor) options.executor = &local;
   Validated v = validate_workflow(file, registry);
   for (const auto &only : options.only) {
     bool found = false;
@@ -59,12 +63,12 @@ int run_workflow(const fs::path &file, const RunOptions &options, PluginRegistry
     bool selected = options.only.empty();
     for (const auto &o : options.only) selected |= iequals(o, kind);
     if (!selected) continue;
-    if (options.executor && kind != "simulate") options.executor->release();  // the later stages run here alone
+    if (kind != "simulate") options.executor->release();  // the later stages run here alone
     spdlog::info("stage {}: {}", i + 1, kind);
     const auto t0 = std::chrono::steady_clock::now();
     const std::string start = RunDirectory::now_iso();
     v.stages[i]->run(ctx);
-    if (options.executor && !options.executor->runs_later_stages()) break;  // they wait for the cases in a job
+    if (!options.executor->runs_later_stages()) break;  // they wait for the cases in a job
     if (!options.records_manifest()) continue;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     run.update_manifest([&](nlohmann::json &m) {

@@ -23,12 +23,13 @@ struct RunOptions {
   int jobs = 1;
   std::set<std::string> only;  // empty = all stages
   fs::path out;                // run directory; empty = runs/<name>
-  // Where the simulate stage's cases run (workflow/executor_hook.hpp); null: here, in `jobs` threads.
+  // Where the simulate stage's cases run (workflow/executor_hook.hpp); null: here, in `jobs` threads
+  // (run_workflow gives the stages a LocalExecutor).
   CaseExecutor *executor = nullptr;
   // --case N: this one case of the design only, as a Slurm array task runs it. Many such processes
   // run at once, so none of them writes manifest.json (the job of the later stages does).
   std::optional<std::size_t> only_case;
-  int case_threads = 0;  // OpenMP threads of that case; 0: scene.threads, else OpenMP's default
+  int case_threads = 0;  // OpenMP threads of each case run here; 0: scene.threads, else all the cores
   bool records_manifest() const { return !only_case; }
 };
 

@@ -135,7 +135,7 @@ class TradeoffStage : public Stage {
         req.dir = ctx.run.case_dir(req.id);
         req.heaps = ctx.run.heaps();
         bool ran = false;
-        const auto c = ensure_case(ctx, req, render_, ran);
+        const auto c = ensure_case(ctx, req, render_, ran, "tradeoff");
         const auto layer = measure_case_layer(ctx.registry, req.scene, req.dir);
         auto &r = results[f];
         r.vs.push_back(layer.metrics.value("vs", std::nan("")));
