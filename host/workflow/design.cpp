@@ -1,5 +1,6 @@
 #include "workflow/design.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -223,6 +224,18 @@ Design parse_design(const YAML::Node &node, const std::string &file, const std::
         row.push_back(j.is_number() ? j.get<double>() : 0.0);
       }
       d.cases.push_back(row);
+      // a key the first case does not have (a typo, most often): named, with the nearest variable
+      std::vector<std::string> known;
+      for (const auto &var : d.variables) known.push_back(var.key.name);
+      if (cases[i].IsMap())
+        for (const auto &kv : cases[i]) {
+          const std::string name = kv.first.as<std::string>();
+          if (std::find(known.begin(), known.end(), name) != known.end() || i == 0) continue;
+          const std::string near = closest(name, known);
+          diag.error(Location::of(file, kv.first), key_path + ".cases[" + std::to_string(i) + "]." + name,
+                     "not a variable of the first case (every case names the same variables)",
+                     near.empty() ? "the first case names: " + join(known) : "did you mean '" + near + "'?");
+        }
     }
   }
   if (d.cases.empty() && nv == 0) d.cases.push_back({});

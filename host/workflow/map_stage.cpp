@@ -1,8 +1,11 @@
 // map: the process map of a trained model (by default the train stage's first) into map/.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "analysis/table.hpp"
 #include "core/error.hpp"
+#include "core/suggest.hpp"
 #include "core/units.hpp"
 #include "workflow/mapping.hpp"
 #include "workflow/figure_style.hpp"
@@ -23,13 +26,21 @@ class MapStage : public Stage {
       if (k != "model" && k != "grid" && k != "rq_max" && k != "render")
         diag.error(Location::of(file, kv.first), "map." + k, "unknown key", "known: model, grid, rq_max, render");
     }
+    std::vector<std::string> trained;  // by this workflow's train stage, when it has one
     for (const auto &s : wf.stages)
-      if (s.kind == "train" && model_.empty()) {
+      if (s.kind == "train") {
         Diagnostics ignore;  // the train stage reports its own problems
-        const auto t = read_train_config(wf, s, registry, ignore);
-        if (!t.models.empty()) model_ = t.models.front().first;
+        for (const auto &m : read_train_config(wf, s, registry, ignore).models) trained.push_back(m.first);
       }
-    if (cfg["model"]) model_ = cfg["model"].as<std::string>();
+    if (!trained.empty()) model_ = trained.front();
+    if (cfg["model"]) {
+      model_ = cfg["model"].as<std::string>();
+      if (!trained.empty() && std::find(trained.begin(), trained.end(), model_) == trained.end()) {
+        const std::string near = closest(model_, trained);
+        diag.error(Location::of(file, cfg["model"]), "map.model", "'" + model_ + "' is not trained by this workflow",
+                   (near.empty() ? "" : "did you mean '" + near + "'? ") + "the train stage trains: " + join(trained));
+      }
+    }
     if (model_.empty()) model_ = "bpnn";
     grid_ = cfg["grid"] ? cfg["grid"].as<std::string>() : "";
     if (!grid_.empty()) {
