@@ -218,8 +218,7 @@ template <class Real> struct DeviceSlot {
 };
 
 template <class Real> class ResidentStepper final : public engine::StepBackend<Real> {
-  using Access = engine::StepAccess<Real>;
-  using Sim = engine::Simulation<Real>;
+  using State = engine::StepState<Real>;
 
  public:
   ResidentStepper(ResidentLaws laws, int device) : laws_(std::move(laws)), device_(device) {
@@ -229,9 +228,9 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   }
   std::string name() const override { return "cuda on " + device_name(device_); }
 
-  void upload(Sim &sim) override {
+  void upload(State &state) override {
     select_device(device_);
-    auto &p = Access::particles(sim);
+    auto &p = state.particles;
     n_ = static_cast<std::uint32_t>(p.size());
     real_.clear();
     index_.clear();
@@ -247,17 +246,17 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       index_column_[&c] = k;
       index_[k++].upload(c.data(), c.size());
     });
-    auto &list = Access::list(sim);
-    history_ = Access::pair_law(sim).ops->history;
-    if (Access::list_valid(sim) && list.start.size() == std::size_t(n_) + 1) {
+    auto &list = state.list;
+    history_ = state.pair_law.ops->history;
+    if (state.list_valid && list.start.size() == std::size_t(n_) + 1) {
       start_.upload(list.start.data(), list.start.size());
       nbr_.upload(list.nbr.data(), list.nbr.size());
       hist_.upload(list.hist.data(), list.hist.size());
     } else {
-      Access::list_valid(sim) = false;
+      state.list_valid = false;
     }
     slots_.clear();
-    slots_.resize(Access::planes(sim).size() + Access::geometries(sim).size());
+    slots_.resize(state.planes.size() + state.geometries.size());
     std::size_t s = 0;
     auto put = [&](auto &slot) {
       const std::vector<Real> *from[7] = {&slot.overlap, &slot.nx, &slot.ny, &slot.nz, &slot.vx, &slot.vy, &slot.vz};
@@ -265,23 +264,23 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       slots_[s].hist.upload(slot.hist.data(), slot.hist.size());
       ++s;
     };
-    for (auto &pl : Access::planes(sim)) put(pl.slot);
-    for (auto &ge : Access::geometries(sim)) put(ge.slot);
+    for (auto &pl : state.planes) put(pl.slot);
+    for (auto &ge : state.geometries) put(ge.slot);
   }
 
-  void download(Sim &sim) override {
+  void download(State &state) override {
     select_device(device_);
-    auto &p = Access::particles(sim);
+    auto &p = state.particles;
     p.for_each_real([&](std::vector<Real> &c) { real_[real_column_.at(&c)].download(c.data()); });
     p.for_each_index([&](std::vector<std::uint32_t> &c) { index_[index_column_.at(&c)].download(c.data()); });
-    auto &list = Access::list(sim);
+    auto &list = state.list;
     list.start.resize(start_.size());
     list.nbr.resize(nbr_.size());
     list.hist.resize(hist_.size());
     start_.download(list.start.data());
     nbr_.download(list.nbr.data());
     hist_.download(list.hist.data());
-    list.restore_mirror(Access::settings(sim).pairs_once, history_);
+    list.restore_mirror(state.settings.pairs_once, history_);
     std::size_t s = 0;
     auto get = [&](auto &slot) {
       std::vector<Real> *to[7] = {&slot.overlap, &slot.nx, &slot.ny, &slot.nz, &slot.vx, &slot.vy, &slot.vz};
@@ -289,26 +288,26 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       slots_[s].hist.download(slot.hist.data());
       ++s;
     };
-    for (auto &pl : Access::planes(sim)) get(pl.slot);
-    for (auto &ge : Access::geometries(sim)) get(ge.slot);
+    for (auto &pl : state.planes) get(pl.slot);
+    for (auto &ge : state.geometries) get(ge.slot);
   }
 
-  void step(Sim &sim) override {
+  void step(State &state) override {
     const auto t0 = std::chrono::steady_clock::now();
     select_device(device_);
-    const auto &settings = Access::settings(sim);
-    auto &counters = Access::counters(sim);
-    if (!Access::list_valid(sim)) rebuild(sim);
-    if (!Access::forces_valid(sim)) forces(sim);
-    const Real dt = Real(Access::dt(sim)), half = Real(0.5 * Access::dt(sim));
+    const auto &settings = state.settings;
+    auto &counters = state.counters;
+    if (!state.list_valid) rebuild(state);
+    if (!state.forces_valid) forces(state);
+    const Real dt = Real(state.dt), half = Real(0.5 * state.dt);
     // first half kick and drift
-    const Report first = run_reported([&](Report *out) { launch_kick_drift(sim, half, dt, out); }, "the first half kick");
-    if (first.nonfinite > 0) fail_on_host(sim, [&] { Access::report_bad_particle(sim); });
-    bool rebuild_now = !Access::list_valid(sim);
+    const Report first = run_reported([&](Report *out) { launch_kick_drift(state, half, dt, out); }, "the first half kick");
+    if (first.nonfinite > 0) fail_on_host(state, [&] { state.report_bad_particle(); });
+    bool rebuild_now = !state.list_valid;
     if (first.escaped > 0) {
-      sim_to_host(sim);
-      Access::remove_escaped(sim);
-      upload(sim);
+      sim_to_host(state);
+      state.remove_escaped();
+      upload(state);
       rebuild_now = true;
     }
     double largest;
@@ -316,21 +315,21 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       const unsigned long long bits = first.d2_bits;
       std::memcpy(&largest, &bits, sizeof largest);
     }
-    const double half_skin = 0.5 * Access::skin(sim);
+    const double half_skin = 0.5 * state.skin;
     rebuild_now = rebuild_now || !(largest <= half_skin * half_skin);
-    for (auto &pl : Access::planes(sim))
-      for (int a = 0; a < 3; ++a) pl.wall.point[a] += Access::dt(sim) * pl.wall.velocity[a];
-    Access::time(sim) += Access::dt(sim);
-    ++Access::step(sim);
-    if (rebuild_now) rebuild(sim);
-    forces(sim);
-    const Real limit2 = Real(Access::speed_limit(sim) * Access::speed_limit(sim));  // as the CPU rounds it
-    const Report second = run_reported([&](Report *out) { launch_kick_check(sim, half, limit2, out); },
+    for (auto &pl : state.planes)
+      for (int a = 0; a < 3; ++a) pl.wall.point[a] += state.dt * pl.wall.velocity[a];
+    state.time += state.dt;
+    ++state.step;
+    if (rebuild_now) rebuild(state);
+    forces(state);
+    const Real limit2 = Real(state.speed_limit * state.speed_limit);  // as the CPU rounds it
+    const Report second = run_reported([&](Report *out) { launch_kick_check(state, half, limit2, out); },
                                        "the second half kick");
-    if (second.bad > 0) fail_on_host(sim, [&] { Access::report_bad_particle(sim); });
-    if (Access::step(sim) % settings.check_every == 0) {
-      const Report deep = run_reported([&](Report *out) { launch_deep(sim, out); }, "the overlap check");
-      if (deep.bad > 0) fail_on_host(sim, [&] { Access::report_deep_overlap(sim, deep.bad); });
+    if (second.bad > 0) fail_on_host(state, [&] { state.report_bad_particle(); });
+    if (state.step % settings.check_every == 0) {
+      const Report deep = run_reported([&](Report *out) { launch_deep(state, out); }, "the overlap check");
+      if (deep.bad > 0) fail_on_host(state, [&] { state.report_deep_overlap(deep.bad); });
     }
     ++counters.steps;
     counters.particle_steps += double(n_);
@@ -339,13 +338,13 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   }
 
  private:
-  Real *col(Sim &sim, std::vector<Real> &c) { return real_[real_column_.at(&c)].data(); }
-  std::uint32_t *icol(Sim &sim, std::vector<std::uint32_t> &c) { return index_[index_column_.at(&c)].data(); }
+  Real *col(std::vector<Real> &c) { return real_[real_column_.at(&c)].data(); }
+  std::uint32_t *icol(std::vector<std::uint32_t> &c) { return index_[index_column_.at(&c)].data(); }
 
   // The host copy up to date, as Simulation::sync_host would (the engine calls download itself).
-  void sim_to_host(Sim &sim) { download(sim); }
-  template <class F> [[noreturn]] void fail_on_host(Sim &sim, F &&report) {
-    sim_to_host(sim);
+  void sim_to_host(State &state) { download(state); }
+  template <class F> [[noreturn]] void fail_on_host(State &state, F &&report) {
+    sim_to_host(state);
     report();
     throw RunFailure("error: the GPU run stopped at an invalid state");  // report() throws first
   }
@@ -359,16 +358,15 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     return r;
   }
 
-  engine::KickDrift<Real> kick_view(Sim &sim, Real half, Real dt) {
-    auto &p = Access::particles(sim);
-    const auto &d = Access::domain(sim);
-    engine::KickDrift<Real> k{col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.vx), col(sim, p.vy), col(sim, p.vz),
-                              col(sim, p.fx), col(sim, p.fy), col(sim, p.fz), col(sim, p.wx), col(sim, p.wy), col(sim, p.wz),
-                              col(sim, p.tx), col(sim, p.ty), col(sim, p.tz), col(sim, p.x0), col(sim, p.y0), col(sim, p.z0),
-                              col(sim, p.inv_m), col(sim, p.inv_i), col(sim, p.mobile), half, dt, {}, {}, {}, {}, {},
-                              Access::rotating(sim), false};
+  engine::KickDrift<Real> kick_view(State &state, Real half, Real dt) {
+    auto &p = state.particles;
+    const auto &d = state.domain;
+    engine::KickDrift<Real> k{col(p.x), col(p.y), col(p.z), col(p.vx), col(p.vy), col(p.vz), col(p.fx), col(p.fy),
+                              col(p.fz), col(p.wx), col(p.wy), col(p.wz), col(p.tx), col(p.ty), col(p.tz), col(p.x0),
+                              col(p.y0), col(p.z0), col(p.inv_m), col(p.inv_i), col(p.mobile), half, dt, {}, {}, {},
+                              {}, {}, state.rotate, false};
     for (int a = 0; a < 3; ++a) {
-      k.g[a] = Real(Access::settings(sim).gravity[a]);
+      k.g[a] = Real(state.settings.gravity[a]);
       k.lo[a] = Real(d.lo[a]);
       k.hi[a] = Real(d.hi[a]);
       k.len[a] = Real(d.length(a));
@@ -377,50 +375,50 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     return k;
   }
 
-  void launch_kick_drift(Sim &sim, Real half, Real dt, Report *out) {
-    const engine::KickDrift<Real> k = kick_view(sim, half, dt);
+  void launch_kick_drift(State &state, Real half, Real dt, Report *out) {
+    const engine::KickDrift<Real> k = kick_view(state, half, dt);
     if (n_ == 0) return;
     engine::with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate>() {
       kick_drift_kernel<Real, PX, PY, PZ, Rotate><<<blocks_for(n_), block_size>>>(k, n_, out);
     }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
   }
-  void launch_kick_check(Sim &sim, Real half, Real limit2, Report *out) {
-    const engine::KickDrift<Real> k = kick_view(sim, half, Real(Access::dt(sim)));
+  void launch_kick_check(State &state, Real half, Real limit2, Report *out) {
+    const engine::KickDrift<Real> k = kick_view(state, half, Real(state.dt));
     if (n_ == 0) return;
     engine::with_flags([&]<bool Rotate>() { kick_check_kernel<Real, Rotate><<<blocks_for(n_), block_size>>>(k, limit2, n_, out); },
                        k.rotate);
   }
 
-  ListArgs<Real> list_args(Sim &sim) {
-    auto &p = Access::particles(sim);
-    const auto &d = Access::domain(sim);
-    ListArgs<Real> a{col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.r), grid_, cell_sorted_.data(),
-                     cell_start_.data(), {}, Real(Access::skin(sim)), {}, n_};
+  ListArgs<Real> list_args(State &state) {
+    auto &p = state.particles;
+    const auto &d = state.domain;
+    ListArgs<Real> a{col(p.x), col(p.y), col(p.z), col(p.r), grid_, cell_sorted_.data(), cell_start_.data(), {},
+                     Real(state.skin), {}, n_};
     for (int q = 0; q < 3; ++q) a.len[q] = Real(d.length(q)), a.per[q] = d.periodic[q];
     return a;
   }
 
-  void launch_deep(Sim &sim, Report *out) {
+  void launch_deep(State &state, Report *out) {
     if (n_ == 0) return;
-    auto &p = Access::particles(sim);
-    const Real limit = Real(Access::settings(sim).overlap_limit);
-    deep_pairs_kernel<Real><<<blocks_for(n_), block_size>>>(list_args(sim), start_.data(), nbr_.data(), limit, out);
+    auto &p = state.particles;
+    const Real limit = Real(state.settings.overlap_limit);
+    deep_pairs_kernel<Real><<<blocks_for(n_), block_size>>>(list_args(state), start_.data(), nbr_.data(), limit, out);
     std::size_t s = 0;
-    for (auto &pl : Access::planes(sim)) {
-      if (pl.wall.active) deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(sim, p.r), limit, n_, out);
+    for (auto &pl : state.planes) {
+      if (pl.wall.active) deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(p.r), limit, n_, out);
       ++s;
     }
-    for (std::size_t g = 0; g < Access::geometries(sim).size(); ++g, ++s)
-      deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(sim, p.r), limit, n_, out);
+    for (std::size_t g = 0; g < state.geometries.size(); ++g, ++s)
+      deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(p.r), limit, n_, out);
   }
 
   // The engine's rebuild_list, on the device: bounds, grid (the same host function), cells, a stable
   // sort by cell, every column gathered, cell ranges, then the list counted and filled.
-  void rebuild(Sim &sim) {
-    auto &p = Access::particles(sim);
-    const auto &d = Access::domain(sim);
-    ++Access::counters(sim).list_builds;
-    Access::list_valid(sim) = true;
+  void rebuild(State &state) {
+    auto &p = state.particles;
+    const auto &d = state.domain;
+    ++state.counters.list_builds;
+    state.list_valid = true;
     if (n_ == 0) {
       const std::uint32_t zero = 0;
       start_.upload(&zero, 1);
@@ -430,12 +428,11 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     }
     Bounds b{{~0ull, ~0ull, ~0ull}, {0, 0, 0}, 0};
     ok(cudaMemcpy(bounds_.data(), &b, sizeof b, cudaMemcpyHostToDevice), "the bounding box");
-    bounds_kernel<Real><<<blocks_for(n_), block_size>>>(col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.r), n_,
-                                                        bounds_.data());
+    bounds_kernel<Real><<<blocks_for(n_), block_size>>>(col(p.x), col(p.y), col(p.z), col(p.r), n_, bounds_.data());
     ok(cudaMemcpy(&b, bounds_.data(), sizeof b, cudaMemcpyDeviceToHost), "the bounding box");
     double lo[3], hi[3];
     for (int a = 0; a < 3; ++a) lo[a] = from_ordered(b.lo[a]), hi[a] = from_ordered(b.hi[a]);
-    const double reach = 2 * from_ordered(b.r_max) + Access::skin(sim);
+    const double reach = 2 * from_ordered(b.r_max) + state.skin;
     for (int a = 0; a < 3; ++a)
       if (d.periodic[a] && d.length(a) < 2 * reach)
         throw engine::SetupError("domain: the periodic length along " + std::string(1, "xyz"[a]) +
@@ -445,8 +442,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
 
     // a stable sort by cell: the permutation of the CPU's stable counting sort
     cell_.resize(n_), cell_sorted_.resize(n_), perm_in_.resize(n_), perm_.resize(n_);
-    cell_kernel<Real><<<blocks_for(n_), block_size>>>(grid_, col(sim, p.x), col(sim, p.y), col(sim, p.z), n_, cell_.data(),
-                                                      perm_in_.data());
+    cell_kernel<Real><<<blocks_for(n_), block_size>>>(grid_, col(p.x), col(p.y), col(p.z), n_, cell_.data(), perm_in_.data());
     int bits = 1;
     while (bits < 32 && (std::size_t(1) << bits) < cells) ++bits;
     std::size_t temp_bytes = 0;
@@ -472,7 +468,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     std::swap(start_, old_start_);
     std::swap(nbr_, old_nbr_);
     std::swap(hist_, old_hist_);
-    const ListArgs<Real> args = list_args(sim);
+    const ListArgs<Real> args = list_args(state);
     counts_.resize(std::size_t(n_) + 1);
     ok(cudaMemset(counts_.data(), 0, (std::size_t(n_) + 1) * sizeof(std::uint32_t)), "counting the neighbours");
     list_count_kernel<Real><<<blocks_for(n_), block_size>>>(args, counts_.data());
@@ -486,11 +482,11 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     if (entries > 0) list_fill_kernel<Real><<<blocks_for(n_), block_size>>>(args, start_.data(), nbr_.data());
     const std::size_t old_n = old_start_.size() > 0 ? old_start_.size() - 1 : 0;
     if (history_ > 0 && old_nbr_.size() > 0)
-      carry_kernel<Real><<<blocks_for(n_), block_size>>>(icol(sim, p.list_index), std::uint32_t(old_n), start_.data(),
+      carry_kernel<Real><<<blocks_for(n_), block_size>>>(icol(p.list_index), std::uint32_t(old_n), start_.data(),
                                                          nbr_.data(), hist_.data(), old_start_.data(), old_nbr_.data(),
                                                          old_hist_.data(), history_, n_);
-    after_build_kernel<Real><<<blocks_for(n_), block_size>>>(col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.x0),
-                                                             col(sim, p.y0), col(sim, p.z0), icol(sim, p.list_index), n_);
+    after_build_kernel<Real><<<blocks_for(n_), block_size>>>(col(p.x), col(p.y), col(p.z), col(p.x0), col(p.y0), col(p.z0),
+                                                             icol(p.list_index), n_);
     ok(cudaGetLastError(), "rebuilding the neighbour list");
   }
 
@@ -512,26 +508,25 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   }
 
   // Every force and torque of the step: pairs, planes and geometries, in the CPU's order.
-  void forces(Sim &sim) {
-    auto &p = Access::particles(sim);
-    Access::forces_valid(sim) = true;
+  void forces(State &state) {
+    auto &p = state.particles;
+    state.forces_valid = true;
     if (n_ == 0) return;
     for (std::vector<Real> *c : {&p.fx, &p.fy, &p.fz, &p.tx, &p.ty, &p.tz})
-      ok(cudaMemset(col(sim, *c), 0, std::size_t(n_) * sizeof(Real)), "clearing the force accumulators");
-    const auto &d = Access::domain(sim);
-    Particles<Real> v{n_, col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.vx), col(sim, p.vy), col(sim, p.vz),
-                      col(sim, p.wx), col(sim, p.wy), col(sim, p.wz), col(sim, p.r), col(sim, p.m), col(sim, p.fx),
-                      col(sim, p.fy), col(sim, p.fz), col(sim, p.tx), col(sim, p.ty), col(sim, p.tz), {}, {}, {},
-                      Real(Access::dt(sim)), Real(Access::time(sim))};
+      ok(cudaMemset(col(*c), 0, std::size_t(n_) * sizeof(Real)), "clearing the force accumulators");
+    const auto &d = state.domain;
+    Particles<Real> v{n_, col(p.x), col(p.y), col(p.z), col(p.vx), col(p.vy), col(p.vz), col(p.wx), col(p.wy),
+                      col(p.wz), col(p.r), col(p.m), col(p.fx), col(p.fy), col(p.fz), col(p.tx), col(p.ty), col(p.tz),
+                      {}, {}, {}, Real(state.dt), Real(state.time)};
     for (int a = 0; a < 3; ++a) {
       v.box_lo[a] = Real(d.lo[a]);
       v.box_hi[a] = Real(d.hi[a]);
       v.periodic[a] = d.periodic[a] ? 1 : 0;
     }
     const PairList<Real> list{start_.data(), nbr_.data(), hist_.data()};
-    launch_pairs(laws_.pair, Access::pair_law(sim).self, v, list, device_);
+    launch_pairs(laws_.pair, state.pair_law.self, v, list, device_);
     std::size_t s = 0;
-    auto &planes = Access::planes(sim);
+    auto &planes = state.planes;
     for (std::size_t k = 0; k < planes.size(); ++k, ++s) {
       const auto &wall = planes[k].wall;
       if (!wall.active) continue;
@@ -539,14 +534,14 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       for (int a = 0; a < 3; ++a)
         pl.point[a] = Real(wall.point[a]), pl.normal[a] = Real(wall.normal[a]), pl.velocity[a] = Real(wall.velocity[a]);
       const WallContacts<Real> w = slots_[s].view(n_);
-      plane_kernel<Real><<<blocks_for(n_), block_size>>>(pl, col(sim, p.x), col(sim, p.y), col(sim, p.z), col(sim, p.r), n_, w);
+      plane_kernel<Real><<<blocks_for(n_), block_size>>>(pl, col(p.x), col(p.y), col(p.z), col(p.r), n_, w);
       launch_walls(laws_.planes.at(k), wall.law.self, v, w, device_);
     }
-    auto &geometries = Access::geometries(sim);
+    auto &geometries = state.geometries;
     for (std::size_t k = 0; k < geometries.size(); ++k, ++s) {
       const WallContacts<Real> w = slots_[s].view(n_);
       Particles<Real> at = v;  // the geometry's own clock (engine/walls.hpp)
-      at.t = Real(Access::time(sim) + geometries[k].geometry.time_shift);
+      at.t = Real(state.time + geometries[k].geometry.time_shift);
       launch_geometry(laws_.geometries.at(k).first, geometries[k].geometry.self, at, w, device_);
       launch_walls(laws_.geometries.at(k).second, geometries[k].geometry.law.self, v, w, device_);
     }

@@ -21,6 +21,7 @@
 #include <engine/particle_subset.hpp>
 #include <engine/settings.hpp>
 #include <engine/step_backend.hpp>
+#include <engine/step_state.hpp>
 #include <engine/walls.hpp>
 
 #include <array>
@@ -47,20 +48,20 @@ template <class Real = double> class Simulation {
   // when `mass` is empty, fresh ids when `id` is empty). Periodic coordinates are wrapped; a centre
   // outside an open axis is an error. The time step is chosen again before the next step.
   void add_particles(ParticleSet set, double density = 0);
-  std::size_t size() const { return p_.size(); }
+  std::size_t size() const { return state_.particles.size(); }
   // The current state in the engine's current (cell-sorted) order, in double.
   ParticleSet state() const;
   const ParticleArrays<Real> &arrays() const {
     sync_host();
-    return p_;
+    return state_.particles;
   }
 
   // --- walls ---------------------------------------------------------------------------------
   std::size_t add_plane_wall(PlaneWall wall);       // returns its index; before load_checkpoint
   std::size_t add_geometry(GeometryWall geometry);  // returns its index; before load_checkpoint
-  std::size_t plane_wall_count() const { return planes_.size(); }
-  std::size_t geometry_count() const { return geometries_.size(); }
-  const PlaneWall &plane_wall(std::size_t i) const { return planes_.at(i).wall; }
+  std::size_t plane_wall_count() const { return state_.planes.size(); }
+  std::size_t geometry_count() const { return state_.geometries.size(); }
+  const PlaneWall &plane_wall(std::size_t i) const { return state_.planes.at(i).wall; }
   void set_plane_wall_active(std::size_t i, bool active);  // deactivating clears its history
   void set_plane_wall_velocity(std::size_t i, const std::array<double, 3> &velocity);
 
@@ -72,8 +73,8 @@ template <class Real = double> class Simulation {
   double critical_dt() const;
   // The step in use (resolves the automatic step, or checks the requested one, if not done yet).
   double dt();
-  double time() const { return time_; }
-  std::uint64_t step_count() const { return step_; }
+  double time() const { return state_.time; }
+  std::uint64_t step_count() const { return state_.step; }
 
   void step();
   void run_steps(std::uint64_t n);
@@ -94,16 +95,16 @@ template <class Real = double> class Simulation {
   void force_rotation(bool on);
 
   // --- figures -------------------------------------------------------------------------------
-  std::uint64_t removed_count() const { return counters_.removed; }
-  const RunCounters &counters() const { return counters_; }
-  bool rotation_integrated() const { return rotate_; }
+  std::uint64_t removed_count() const { return state_.counters.removed; }
+  const RunCounters &counters() const { return state_.counters; }
+  bool rotation_integrated() const { return state_.rotate; }
   std::size_t list_entries() const {
     sync_host();
-    return list_.entries();
+    return state_.list.entries();
   }
-  double skin() const { return skin_; }
-  const Domain &domain() const { return domain_; }
-  const Settings &settings() const { return settings_; }
+  double skin() const { return state_.skin; }
+  const Domain &domain() const { return state_.domain; }
+  const Settings &settings() const { return state_.settings; }
 
   // --- checkpoints ---------------------------------------------------------------------------
   // Everything a bitwise-identical continuation needs, written atomically (write_atomic).
@@ -113,93 +114,41 @@ template <class Real = double> class Simulation {
   void load_checkpoint(const std::filesystem::path &path);
 
  private:
-  friend struct StepAccess<Real>;
   // The host copy is brought up to date before it is read (the pending second half kick run; with a
   // backend, the state downloaded), and marked changed (to be uploaded) before it is written.
   void sync_host() const;
   void host_changes();
 
-  struct WallSlot {
-    std::vector<Real> overlap, nx, ny, nz, vx, vy, vz, hist;
-    unsigned history = 0;
-    bool touched = false;  // some particle touched at the last evaluation
-    WallContacts<Real> view(std::size_t n) {
-      return {static_cast<std::uint32_t>(n), overlap.data(), nx.data(), ny.data(), nz.data(),
-              vx.data(), vy.data(), vz.data(), hist.data()};
-    }
-    void resize(std::size_t n);
-  };
-  struct PlaneSlot {
-    PlaneWall wall;
-    WallSlot slot;
-    std::vector<std::uint32_t> near;  // the particles its law sees this step (plane_contacts)
-    // The normal and velocity its dense records hold for every particle (dense_plane_forces), and
-    // for how many particles; 0: not written.
-    std::array<Real, 6> records{};
-    std::size_t records_for = 0;
-  };
-  // A geometry is evaluated only for the particles near it (`near`, ascending), found by asking the
-  // plugin which particles a sphere 3 skins larger would touch (see find_near_geometry).
-  struct GeometrySlot {
-    GeometryWall geometry;
-    WallSlot slot;
-    std::vector<std::uint32_t> near;
-    bool near_valid = false;
-    double near_since = 0;  // time of the search [s]
-    double speed = 0;       // bound on the speed of any surface point [m/s]
-  };
-
   void prepare();
   void resolve_step();
   void rebuild_list();
   void share_like_pairs();  // the step's loops split the particles as the pair loop does
-  void find_near_geometry(GeometrySlot &geometry);
-  void geometry_forces(GeometrySlot &geometry, const Particles<Real> &view);
+  void find_near_geometry(GeometrySlot<Real> &geometry);
+  void geometry_forces(GeometrySlot<Real> &geometry, const Particles<Real> &view);
   void compute_forces();
-  void plane_contacts(PlaneSlot &plane);
-  void dense_plane_forces(PlaneSlot &plane, const Particles<Real> &view);
+  void plane_contacts(PlaneSlot<Real> &plane);
+  void dense_plane_forces(PlaneSlot<Real> &plane, const Particles<Real> &view);
   void subset_forces(const ContactLaw &law, const Particles<Real> &sv, WallContacts<Real> &sw);
   // Wall subsets smaller than this are evaluated on the calling thread.
   static constexpr std::uint32_t subset_parallel_from = 512;
-  void remove_escaped();
   KickDrift<Real> integration(Real half_dt, Real dt);
   bool kick_and_drift(Real half_dt, Real dt);  // returns true when the list must be rebuilt
   void kick_and_check(Real half_dt);
   void check_overlaps();
-  void report_deep_overlap(std::uint32_t bad) const;
   void update_sleep();
   void wake(std::uint32_t i);
   void find_border();
-  [[noreturn]] void report_bad_particle() const;  // throws RunError for the first NaN or too fast particle
   Particles<Real> view();
   void log(const std::string &message) const;
-  void resize_walls();
-  template <class F> void for_each_wall_slot(F &&f);
 
-  Domain domain_;
-  ContactLaw pair_law_;
-  Settings settings_;
-
-  ParticleArrays<Real> p_;
-  NeighbourList<Real> list_;
-  std::vector<PlaneSlot> planes_;
-  std::vector<GeometrySlot> geometries_;
-
-  double time_ = 0;
-  std::uint64_t step_ = 0;
-  double dt_ = 0;
-  double skin_ = 0;
-  double speed_limit_ = 0;
-  bool rotate_ = false;
+  // The scene and what a step advances: stepped here (step) or by the backend.
+  StepState<Real> state_;
   bool step_resolved_ = false;  // dt, skin, rotation and limits chosen for the current scene
-  bool list_valid_ = false;
-  bool forces_valid_ = false;
   bool forces_zeroed_ = false;  // kick_and_drift cleared the accumulators after using them
   // The last step's second half kick is still to run: the next kick_and_drift runs it in its pass,
   // sync_host before anything reads or changes the state.
   bool second_kick_pending_ = false;
   std::uint32_t next_id_ = 0;
-  RunCounters counters_;
   // Sleeping: where particles may fall asleep, how many are, and the awake particles listed with a
   // sleeping neighbour (those whose motion can wake one).
   double sleep_x_max_ = -std::numeric_limits<double>::infinity();
@@ -217,33 +166,6 @@ template <class Real = double> class Simulation {
   std::vector<Real> inflated_radius_;   // radii + margin for the geometry search
   std::vector<std::vector<std::uint32_t>> thread_index_;  // per-thread index lists
   ParticleSubset<Real> subset_;
-};
-
-// The internals a step backend works on. Only a backend uses this.
-template <class Real> struct StepAccess {
-  using Sim = Simulation<Real>;
-  static ParticleArrays<Real> &particles(Sim &s) { return s.p_; }
-  static NeighbourList<Real> &list(Sim &s) { return s.list_; }
-  static auto &planes(Sim &s) { return s.planes_; }
-  static auto &geometries(Sim &s) { return s.geometries_; }
-  static const Settings &settings(const Sim &s) { return s.settings_; }
-  static const Domain &domain(const Sim &s) { return s.domain_; }
-  static const ContactLaw &pair_law(const Sim &s) { return s.pair_law_; }
-  static double &time(Sim &s) { return s.time_; }
-  static std::uint64_t &step(Sim &s) { return s.step_; }
-  static double dt(const Sim &s) { return s.dt_; }
-  static double skin(const Sim &s) { return s.skin_; }
-  static double speed_limit(const Sim &s) { return s.speed_limit_; }
-  static bool rotating(const Sim &s) { return s.rotate_; }
-  static bool &list_valid(Sim &s) { return s.list_valid_; }
-  static bool &forces_valid(Sim &s) { return s.forces_valid_; }
-  static RunCounters &counters(Sim &s) { return s.counters_; }
-  static std::size_t asleep(const Sim &s) { return s.asleep_; }
-  // Host-side work on the host copy (brought up to date first): removing escaped particles, and the
-  // run-time checks' error messages (they throw RunError).
-  static void remove_escaped(Sim &s) { s.remove_escaped(); }
-  [[noreturn]] static void report_bad_particle(const Sim &s) { s.report_bad_particle(); }
-  static void report_deep_overlap(const Sim &s, std::uint32_t bad) { s.report_deep_overlap(bad); }
 };
 
 extern template class Simulation<double>;

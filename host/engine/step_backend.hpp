@@ -4,26 +4,26 @@
 // neighbour listing, and the plugins' own kernels for the contacts; the host copy is brought up to
 // date only when the host reads it (state, arrays, checkpoints, error reports).
 //
+// A backend sees the Simulation only through the StepState it is handed (engine/step_state.hpp):
+// the scene, what a step advances, the step's parameters, and the services on the host copy.
 // One virtual call per step, never per particle or contact.
 #pragma once
+#include <engine/step_state.hpp>
+
 #include <string>
 
 namespace spreadmap::engine {
-
-template <class Real> class Simulation;
 
 template <class Real> struct StepBackend {
   virtual ~StepBackend() = default;
   virtual std::string name() const = 0;
   // The host copy changed (particles added, a checkpoint loaded, walls switched): take all of it.
-  virtual void upload(Simulation<Real> &sim) = 0;
-  // One step with the engine's step() semantics (counters and time included).
-  virtual void step(Simulation<Real> &sim) = 0;
-  // Write the state into the host copy.
-  virtual void download(Simulation<Real> &sim) = 0;
+  virtual void upload(StepState<Real> &state) = 0;
+  // One step with the engine's step() semantics (time, step, counters and validity flags included);
+  // the host copy is stale afterwards (its particles, list and wall slots), until download.
+  virtual void step(StepState<Real> &state) = 0;
+  // Write the state into the host copy (the same StepState the backend steps).
+  virtual void download(StepState<Real> &state) = 0;
 };
-
-// A backend's way into the Simulation it steps (the engine's internals, nothing else uses them).
-template <class Real> struct StepAccess;
 
 }  // namespace spreadmap::engine

@@ -79,6 +79,18 @@ TEST(ContactParts, ViscousAndCoulombSliders) {
   EXPECT_THROW(sm::slider_from_name("sticky"), sm::ParamError);
 }
 
+TEST(ContactParts, NoSliderActsOnASlipWithinTheRoundOffOfTheNormalSpeed) {
+  const double m_eq = 2e-8, dt = 1e-7, cap = 1e-4, gamma = 28340.1, v_n = 0.5;
+  const double round_off = sm::slip_round_off(v_n);
+  EXPECT_EQ(round_off, 8 * 0x1p-52 * v_n) << "8 ulps of |v_n|";
+  EXPECT_EQ(sm::slip_round_off(0.5f), 8 * 0x1p-23f * 0.5f) << "in float, 8 of its ulps";
+  const V3 within{0, 0, round_off}, beyond{0, 0, 2 * round_off};
+  for (sm::Slider kind : {sm::Slider::stick, sm::Slider::viscous, sm::Slider::coulomb}) {
+    EXPECT_EQ(sm::norm(sm::slider_force(kind, cap, within, m_eq, dt, gamma, 0.0, round_off)), 0.0) << int(kind);
+    EXPECT_LT(sm::slider_force(kind, cap, beyond, m_eq, dt, gamma, 0.0, round_off).z, 0.0) << int(kind);
+  }
+}
+
 TEST(ContactParts, RollingTorqueIsDirectionalCappedAndIgnoresTwist) {
   const double m_eq = 3.6e-8, r = 125e-6, dt = 3e-7, fn = 3.5e-7, mu_r = 0.1;
   const V3 n{0, 0, 1};

@@ -2,7 +2,8 @@
 // spheres and plane walls that drives a law through the SDK's own pair_loop/wall_loop (so the
 // contact-point kinematics and torque arms are the engine's). Velocity Verlet with the forces
 // evaluated at the new positions and the half-step velocities (translation and spin), as the engine
-// does: v += a dt/2; x += v dt; F(x, v); v += a dt/2.
+// does: v += a dt/2; x += v dt; F(x, v); v += a dt/2. The law sees the state in `Real` (double or
+// float, as the engine's precisions); the integrator keeps it in double.
 #pragma once
 #include <spreadmap/contact.hpp>
 #include <spreadmap/params.hpp>
@@ -49,7 +50,7 @@ struct Plane {
   V3 point, normal;  // normal: unit, pointing into the side where the spheres are
 };
 
-template <class Law> class Integrator {
+template <class Law, class Real = double> class Integrator {
  public:
   Integrator(const Law &law, std::vector<Sphere> spheres, double dt, V3 gravity = {0, 0, 0},
              std::vector<Plane> walls = {})
@@ -69,7 +70,7 @@ template <class Law> class Integrator {
       start_.push_back(static_cast<std::uint32_t>(nbr_.size()));
     }
     pair_hist_.assign(nbr_.size() * (Law::history ? Law::history : 1), 0.0);
-    wall_hist_.assign(walls_.size(), std::vector<double>(n * (Law::history ? Law::history : 1), 0.0));
+    wall_hist_.assign(walls_.size(), std::vector<Real>(n * (Law::history ? Law::history : 1), Real(0)));
     for (auto *a : {&w_overlap_, &w_nx_, &w_ny_, &w_nz_, &w_vx_, &w_vy_, &w_vz_}) a->assign(n, 0.0);
     compute_forces();
   }
@@ -84,8 +85,8 @@ template <class Law> class Integrator {
 
   const std::vector<Sphere> &spheres() const { return s_; }
   Sphere &sphere(std::size_t i) { return s_[i]; }
-  V3 force(std::size_t i) const { return {fx_[i], fy_[i], fz_[i]}; }
-  V3 torque(std::size_t i) const { return {tx_[i], ty_[i], tz_[i]}; }
+  V3 force(std::size_t i) const { return {double(fx_[i]), double(fy_[i]), double(fz_[i])}; }
+  V3 torque(std::size_t i) const { return {double(tx_[i]), double(ty_[i]), double(tz_[i])}; }
   double time() const { return t_; }
   double dt() const { return dt_; }
   // Overlap of sphere i with wall k (> 0 in contact) or with sphere j.
@@ -106,23 +107,24 @@ template <class Law> class Integrator {
     const std::size_t n = s_.size();
     for (std::size_t i = 0; i < n; ++i) {
       const Sphere &s = s_[i];
-      x_[i] = s.x.x; y_[i] = s.x.y; z_[i] = s.x.z;
-      vx_[i] = s.v.x; vy_[i] = s.v.y; vz_[i] = s.v.z;
-      wx_[i] = s.w.x; wy_[i] = s.w.y; wz_[i] = s.w.z;
-      r_[i] = s.r; m_[i] = s.m;
+      x_[i] = Real(s.x.x); y_[i] = Real(s.x.y); z_[i] = Real(s.x.z);
+      vx_[i] = Real(s.v.x); vy_[i] = Real(s.v.y); vz_[i] = Real(s.v.z);
+      wx_[i] = Real(s.w.x); wy_[i] = Real(s.w.y); wz_[i] = Real(s.w.z);
+      r_[i] = Real(s.r); m_[i] = Real(s.m);
       fx_[i] = fy_[i] = fz_[i] = tx_[i] = ty_[i] = tz_[i] = 0;
     }
-    Particles<double> p{static_cast<std::uint32_t>(n), x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(),
-                        vz_.data(), wx_.data(), wy_.data(), wz_.data(), r_.data(), m_.data(), fx_.data(), fy_.data(),
-                        fz_.data(), tx_.data(), ty_.data(), tz_.data(), {-1, -1, -1}, {1, 1, 1}, {0, 0, 0}, dt_, t_};
-    PairList<double> list{start_.data(), nbr_.data(), pair_hist_.data()};
+    Particles<Real> p{static_cast<std::uint32_t>(n), x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(),
+                      vz_.data(), wx_.data(), wy_.data(), wz_.data(), r_.data(), m_.data(), fx_.data(), fy_.data(),
+                      fz_.data(), tx_.data(), ty_.data(), tz_.data(), {-1, -1, -1}, {1, 1, 1}, {0, 0, 0}, Real(dt_),
+                      Real(t_)};
+    PairList<Real> list{start_.data(), nbr_.data(), pair_hist_.data()};
     pair_loop(law_, p, list);
     for (std::size_t k = 0; k < walls_.size(); ++k) {
       for (std::size_t i = 0; i < n; ++i) {
-        w_overlap_[i] = wall_overlap(i, k);
-        w_nx_[i] = walls_[k].normal.x; w_ny_[i] = walls_[k].normal.y; w_nz_[i] = walls_[k].normal.z;
+        w_overlap_[i] = Real(wall_overlap(i, k));
+        w_nx_[i] = Real(walls_[k].normal.x); w_ny_[i] = Real(walls_[k].normal.y); w_nz_[i] = Real(walls_[k].normal.z);
       }
-      WallContacts<double> w{static_cast<std::uint32_t>(n), w_overlap_.data(), w_nx_.data(), w_ny_.data(), w_nz_.data(),
+      WallContacts<Real> w{static_cast<std::uint32_t>(n), w_overlap_.data(), w_nx_.data(), w_ny_.data(), w_nz_.data(),
                              w_vx_.data(), w_vy_.data(), w_vz_.data(), wall_hist_[k].data()};
       wall_loop(law_, p, w);
     }
@@ -133,11 +135,11 @@ template <class Law> class Integrator {
   std::vector<Plane> walls_;
   double dt_, t_ = 0;
   V3 g_;
-  std::vector<double> x_, y_, z_, vx_, vy_, vz_, wx_, wy_, wz_, r_, m_, fx_, fy_, fz_, tx_, ty_, tz_;
+  std::vector<Real> x_, y_, z_, vx_, vy_, vz_, wx_, wy_, wz_, r_, m_, fx_, fy_, fz_, tx_, ty_, tz_;
   std::vector<std::uint32_t> start_, nbr_;
-  std::vector<double> pair_hist_;
-  std::vector<std::vector<double>> wall_hist_;
-  std::vector<double> w_overlap_, w_nx_, w_ny_, w_nz_, w_vx_, w_vy_, w_vz_;
+  std::vector<Real> pair_hist_;
+  std::vector<std::vector<Real>> wall_hist_;
+  std::vector<Real> w_overlap_, w_nx_, w_ny_, w_nz_, w_vx_, w_vy_, w_vz_;
 };
 
 // A 250 um Ti-6Al-4V sphere, the study's particle.

@@ -129,12 +129,28 @@ inline Slider slider_from_name(const std::string &name) {
   throw ParamError("slider '" + name + "' is not one of stick, viscous, coulomb");
 }
 
+// Machine epsilon of Real (std::numeric_limits is host-only under nvcc).
+template <class Real> SM_HD constexpr Real machine_epsilon() {
+  return sizeof(Real) == sizeof(float) ? Real(1.1920928955078125e-7) : Real(2.220446049250313e-16);
+}
+
+// The slip a contact's kinematics make from round-off alone: along the line of centres v - (v.n) n is
+// not zero but a few ulps of v_n, since the normal d/|d| is off by an ulp or so. Such a slip has no
+// direction: taken as one, the coulomb slider would brake a head-on impact (restitution 0.478 for 0.5)
+// and the others would push along the normal by a round-off force. The sliders take a slip up to
+// slip_round_off(|v_n|) for none.
+inline constexpr double slip_round_off_ulps = 8;
+template <class Real> SM_HD Real slip_round_off(Real normal_speed) {
+  return Real(slip_round_off_ulps) * machine_epsilon<Real>() * normal_speed;
+}
+
 // Tangential force of a spring-less slider with Coulomb cap `cap` = mu |F_n| [N].
-// slip_rate: gamma_t [1/s] (viscous); slip_speed_min [m/s] (coulomb).
+// slip_rate: gamma_t [1/s] (viscous); slip_speed_min [m/s] (coulomb); round_off [m/s]: no force for a
+// slip up to this speed, whatever the slider (slip_round_off).
 // Written with selects, no branch, so that a loop over contacts vectorises.
 template <class Real>
 SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real m_eq, Real dt, Real slip_rate,
-                              Real slip_speed_min) {
+                              Real slip_speed_min, Real round_off = Real(0)) {
   const Real speed = norm(v_t);
   // Stick: below the cap, the impulse F dt changes the slip by F dt / m_t = |v_t| / 2: never reverses
   // it, and a round-off slip gets a round-off force (no spurious spin). Every case is computed and one
@@ -143,7 +159,7 @@ SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real
   const Real stick = tangential_mass(m_eq) * speed / (Real(2) * dt), viscous = m_eq * slip_rate * speed;
   const Real magnitude = min(cap, kind == Slider::stick ? stick : (kind == Slider::viscous ? viscous : cap));
   const Real scale = -magnitude / speed;
-  const bool acts = (speed > 0) & (cap > 0) & !((kind == Slider::coulomb) & (speed <= slip_speed_min));
+  const bool acts = (speed > round_off) & (cap > 0) & !((kind == Slider::coulomb) & (speed <= slip_speed_min));
   return {acts ? v_t.x * scale : Real(0), acts ? v_t.y * scale : Real(0), acts ? v_t.z * scale : Real(0)};
 }
 

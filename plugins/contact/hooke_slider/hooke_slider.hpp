@@ -17,7 +17,9 @@
 // removes half the slip per step below the Coulomb cap; viscous is LIGGGHTS' min(mu|F_n|, m_eq gamma_t
 // |v_t|) (gamma_t = beta_n/m_eq by default; note (7/2) gamma_t dt must stay below 2); coulomb is the
 // textbook slider with no force below slip_speed_min, which chatters: each step the slip reverses
-// and full friction acts in alternate directions while a contact should be stuck.
+// and full friction acts in alternate directions while a contact should be stuck. Every slider takes
+// a slip within the round-off of the normal speed for none (slip_round_off): a head-on impact has no
+// friction, even with slip_speed_min = 0.
 // Optional rolling resistance (constant directional torque, see contact_parts.hpp).
 // Reference: the study in /work/shared/reference-study.txt; Cundall & Strack 1979. Units SI.
 // History: none.
@@ -68,7 +70,9 @@ struct HookeSlider {
     const Real fn = normal.force(c.m_eq, c.overlap, c.v_n);
     f.normal = touching ? fn : Real(0);
     const Real fn_abs = f.normal < 0 ? -f.normal : f.normal;
-    f.tangent = slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min));
+    const Real round_off = slip_round_off(c.v_n < 0 ? -c.v_n : c.v_n);
+    f.tangent = slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min),
+                             round_off);
     f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
     return f;
   }
