@@ -79,15 +79,21 @@ TEST(ContactParts, ViscousAndCoulombSliders) {
   EXPECT_THROW(sm::slider_from_name("sticky"), sm::ParamError);
 }
 
-TEST(ContactParts, NoSliderActsOnASlipWithinTheRoundOffOfTheNormalSpeed) {
+// The coulomb slider takes a slip within the round-off of the normal speed for none (it would give it
+// the full cap); stick and viscous give it a force in proportion, a round-off force.
+TEST(ContactParts, CoulombSliderTakesASlipWithinTheRoundOffOfTheNormalSpeedForNone) {
   const double m_eq = 2e-8, dt = 1e-7, cap = 1e-4, gamma = 28340.1, v_n = 0.5;
   const double round_off = sm::slip_round_off(v_n);
   EXPECT_EQ(round_off, 8 * 0x1p-52 * v_n) << "8 ulps of |v_n|";
   EXPECT_EQ(sm::slip_round_off(0.5f), 8 * 0x1p-23f * 0.5f) << "in float, 8 of its ulps";
   const V3 within{0, 0, round_off}, beyond{0, 0, 2 * round_off};
-  for (sm::Slider kind : {sm::Slider::stick, sm::Slider::viscous, sm::Slider::coulomb}) {
-    EXPECT_EQ(sm::norm(sm::slider_force(kind, cap, within, m_eq, dt, gamma, 0.0, round_off)), 0.0) << int(kind);
-    EXPECT_LT(sm::slider_force(kind, cap, beyond, m_eq, dt, gamma, 0.0, round_off).z, 0.0) << int(kind);
+  EXPECT_EQ(sm::norm(sm::slider_force(sm::Slider::coulomb, cap, within, m_eq, dt, gamma, 0.0, round_off)), 0.0);
+  EXPECT_DOUBLE_EQ(sm::slider_force(sm::Slider::coulomb, cap, beyond, m_eq, dt, gamma, 0.0, round_off).z, -cap);
+  for (sm::Slider kind : {sm::Slider::stick, sm::Slider::viscous}) {
+    const double f = sm::slider_force(kind, cap, within, m_eq, dt, gamma, 0.0, round_off).z;
+    EXPECT_LT(f, 0.0) << int(kind);
+    EXPECT_LT(-f, 1e-12 * cap) << int(kind) << ": a round-off slip, a round-off force";
+    EXPECT_EQ(f, sm::slider_force(kind, cap, within, m_eq, dt, gamma, 0.0).z) << int(kind) << ": unchanged";
   }
 }
 

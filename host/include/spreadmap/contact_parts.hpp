@@ -136,17 +136,18 @@ template <class Real> SM_HD constexpr Real machine_epsilon() {
 
 // The slip a contact's kinematics make from round-off alone: along the line of centres v - (v.n) n is
 // not zero but a few ulps of v_n, since the normal d/|d| is off by an ulp or so. Such a slip has no
-// direction: taken as one, the coulomb slider would brake a head-on impact (restitution 0.478 for 0.5)
-// and the others would push along the normal by a round-off force. The sliders take a slip up to
-// slip_round_off(|v_n|) for none.
+// direction: taken as one, the coulomb slider (full mu |F_n| for any slip above slip_speed_min) would
+// brake a head-on impact (restitution 0.478 for 0.5), so it takes a slip up to slip_round_off(|v_n|)
+// for none. The stick and viscous sliders give a round-off slip a round-off force, proportional to
+// it: they are left as they are (a resting heap's contacts have such slips; their bits stay).
 inline constexpr double slip_round_off_ulps = 8;
 template <class Real> SM_HD Real slip_round_off(Real normal_speed) {
   return Real(slip_round_off_ulps) * machine_epsilon<Real>() * normal_speed;
 }
 
 // Tangential force of a spring-less slider with Coulomb cap `cap` = mu |F_n| [N].
-// slip_rate: gamma_t [1/s] (viscous); slip_speed_min [m/s] (coulomb); round_off [m/s]: no force for a
-// slip up to this speed, whatever the slider (slip_round_off).
+// slip_rate: gamma_t [1/s] (viscous); slip_speed_min [m/s] (coulomb); round_off [m/s] (coulomb): no
+// force for a slip up to this speed either (slip_round_off).
 // Written with selects, no branch, so that a loop over contacts vectorises.
 template <class Real>
 SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real m_eq, Real dt, Real slip_rate,
@@ -159,7 +160,7 @@ SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real
   const Real stick = tangential_mass(m_eq) * speed / (Real(2) * dt), viscous = m_eq * slip_rate * speed;
   const Real magnitude = min(cap, kind == Slider::stick ? stick : (kind == Slider::viscous ? viscous : cap));
   const Real scale = -magnitude / speed;
-  const bool acts = (speed > round_off) & (cap > 0) & !((kind == Slider::coulomb) & (speed <= slip_speed_min));
+  const bool acts = (speed > 0) & (cap > 0) & !((kind == Slider::coulomb) & ((speed <= slip_speed_min) | (speed <= round_off)));
   return {acts ? v_t.x * scale : Real(0), acts ? v_t.y * scale : Real(0), acts ? v_t.z * scale : Real(0)};
 }
 

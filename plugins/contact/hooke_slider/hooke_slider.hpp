@@ -17,8 +17,8 @@
 // removes half the slip per step below the Coulomb cap; viscous is LIGGGHTS' min(mu|F_n|, m_eq gamma_t
 // |v_t|) (gamma_t = beta_n/m_eq by default; note (7/2) gamma_t dt must stay below 2); coulomb is the
 // textbook slider with no force below slip_speed_min, which chatters: each step the slip reverses
-// and full friction acts in alternate directions while a contact should be stuck. Every slider takes
-// a slip within the round-off of the normal speed for none (slip_round_off): a head-on impact has no
+// and full friction acts in alternate directions while a contact should be stuck; it takes a slip
+// within the round-off of the normal speed for none (slip_round_off): a head-on impact has no
 // friction, even with slip_speed_min = 0.
 // Optional rolling resistance (constant directional torque, see contact_parts.hpp).
 // Reference: the study in /work/shared/reference-study.txt; Cundall & Strack 1979. Units SI.
