@@ -339,8 +339,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   }
 
  private:
-  Real *col(Sim &sim, std::vector<Real> &c) { return real_[real_column_.at(&c)].data(); }
-  std::uint32_t *icol(Sim &sim, std::vector<std::uint32_t> &c) { return index_[index_column_.at(&c)].data(); }
+  Real *col(Sim &, std::vector<Real> &c) { return real_[real_column_.at(&c)].data(); }
+  std::uint32_t *icol(Sim &, std::vector<std::uint32_t> &c) { return index_[index_column_.at(&c)].data(); }
 
   // The host copy up to date, as Simulation::sync_host would (the engine calls download itself).
   void sim_to_host(Sim &sim) { download(sim); }

@@ -42,7 +42,9 @@ TYPED_TEST(ContactSchema, EveryEntryIsWellFormed) {
         EXPECT_LE(p.def, p.max);
       }
     }
-    if (p.type == SM_BOOLEAN) EXPECT_TRUE(p.def == 0 || p.def == 1);
+    if (p.type == SM_BOOLEAN) {
+      EXPECT_TRUE(p.def == 0 || p.def == 1);
+    }
     if (p.type == SM_ENUM) {
       ASSERT_TRUE(nonempty(p.choices) && nonempty(p.def_text));
       std::set<std::string> choices;
