@@ -19,7 +19,7 @@
 // textbook slider with no force below slip_speed_min, which chatters: each step the slip reverses
 // and full friction acts in alternate directions while a contact should be stuck.
 // Optional rolling resistance (constant directional torque, see contact_parts.hpp).
-// Reference: the study in /work/shared/reference-study.txt; Cundall & Strack 1979. Units SI.
+// References: the reference study (its Eq. 1-4); Cundall & Strack 1979. Units SI.
 // History: none.
 #pragma once
 #include <spreadmap/contact.hpp>
