@@ -2,15 +2,16 @@
 # Throughput on the peers' spreading scene, spreadmap beside LIGGGHTS, measured in the same run.
 #
 # When `liggghts` is on PATH (Debian: apt-get install --no-install-recommends liggghts), it runs the
-# peers' LIGGGHTS decks (shared/peers/liggghts/spread: in.settle, then in.spread at omega = 0) for the
+# peers' LIGGGHTS decks (spread/in.settle, then spread/in.spread at omega = 0, under PEERS_DIR) for the
 # same number of spreading steps, LIGGGHTS_REPEATS times, takes the median of particle-steps/s from
-# each run's "Loop time" (mean atom count x steps / loop time, as RESULTS.md), and hands it to
-# bench_peer_scene, which prints it beside spreadmap's 1- and 2-thread medians. Without LIGGGHTS the
-# benchmark prints RESULTS.md's figure, labelled as not measured in this run.
+# each run's "Loop time" (mean atom count x steps / loop time, as the peers' comparison of LIGGGHTS
+# and LAMMPS counts it), and hands it to bench_peer_scene, which prints it beside spreadmap's 1- and
+# 2-thread medians. Without LIGGGHTS the benchmark prints the peers' recorded figure (bench/README.md),
+# labelled as not measured in this run.
 #
 # usage: bench/peer_scene.sh [extra bench_peer_scene arguments]
 # environment: BUILD (build folder, default ./build), STEPS (20000), REPEATS (3), LIGGGHTS_REPEATS (3),
-#   PEERS_DIR (the peers' liggghts folder, default /work/shared/peers/liggghts), WORK (where the settled
+#   PEERS_DIR (the folder of the peers' LIGGGHTS decks), WORK (where the settled
 #   heaps of both codes are kept and reused, default $BUILD/peer_scene).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -60,7 +61,7 @@ EOF
   version=$(dpkg-query -W -f '${Version}' liggghts 2>/dev/null || echo "?")
   liggghts_args=(--liggghts "$median" --liggghts-label "measured in this run (liggghts $version, $steps steps, median of $lrepeats)")
 else
-  echo "LIGGGHTS not installed (or $peers missing): using RESULTS.md's figure"
+  echo "LIGGGHTS not installed (or $peers missing): using the peers' recorded figure"
 fi
 
 heap=$work/heap_seed1.vtp

@@ -1,5 +1,5 @@
 // bench_peer_scene: throughput of the simulate stage's spreading run on the peers' scene
-// (shared/peers/README.md, workflows/peer_liggghts.yaml): 5000 spheres of 250 um settled on a
+// (workflows/peer_liggghts.yaml, the scene of the peers' LIGGGHTS runs): 5000 spheres of 250 um settled on a
 // 2.5 mm periodic strip, a 10 mm roller at 100 mm/s (omega 0), hooke_slider with LIGGGHTS' viscous
 // slider, the substrate plane, dt = 7.5e-7 s, double precision. The Simulation, its walls and its
 // plugins are built by the same code as a case of the simulate stage (workflow/case_setup.hpp).
@@ -8,7 +8,7 @@
 // (interleaved, so that a slow spell of the machine hits every thread count alike), and prints the
 // median particle-steps/s (particle count summed over the steps / wall time, as LIGGGHTS' figure),
 // the speed-up, the machine, and LIGGGHTS' serial figure: the one given with --liggghts (measured in
-// the same run by bench/peer_scene.sh), else RESULTS.md's, labelled as such. It also checks that
+// the same run by bench/peer_scene.sh), else the peers' recorded one, labelled as such. It also checks that
 // every run ends in the bitwise same state (deterministic mode, any thread count).
 //
 // Usage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] [--steps N]
@@ -51,8 +51,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// RESULTS.md, serial runs w0_s1/w0_s2 (6.35e6, 6.41e6) on a 2-core machine.
-constexpr double liggghts_results_md = 6.4e6;
+// The peers' recorded LIGGGHTS figure: serial runs w0_s1/w0_s2 (6.35e6, 6.41e6) on a 2-core machine.
+constexpr double liggghts_recorded = 6.4e6;
 
 struct Options {
   fs::path workflow = fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "peer_liggghts.yaml";
@@ -62,8 +62,8 @@ struct Options {
   std::vector<int> threads{1, 2};
   double omega = 0;
   std::string backend = "cpu";
-  double liggghts = liggghts_results_md;
-  std::string liggghts_label = "from shared/peers/RESULTS.md (serial, 2-core machine), NOT measured in this run";
+  double liggghts = liggghts_recorded;
+  std::string liggghts_label = "the peers' recorded figure (serial, 2-core machine), NOT measured in this run";
 };
 
 [[noreturn]] void usage(const char *why) {

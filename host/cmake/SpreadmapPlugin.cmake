@@ -2,6 +2,7 @@
 # Builds one plugin as a MODULE named <name>.so that links only the SDK (headers), with hidden
 # visibility so that `spreadmap_plugin_v1` is its only exported symbol. In the source tree it lands
 # in <build>/lib/spreadmap/plugins/<kind>/, beside the binary's ../lib, exactly as an install does.
+include(${CMAKE_CURRENT_LIST_DIR}/SpreadmapWarnings.cmake)
 function(spreadmap_add_plugin)
   cmake_parse_arguments(P "" "KIND;NAME" "SOURCES" ${ARGN})
   if(NOT P_KIND MATCHES "^(contact|spreader|metrics|surrogate)$")
@@ -9,6 +10,7 @@ function(spreadmap_add_plugin)
   endif()
   set(t plugin_${P_KIND}_${P_NAME})
   add_library(${t} MODULE ${P_SOURCES})
+  target_compile_options(${t} PRIVATE ${SPREADMAP_WARNING_OPTIONS})
   if(TARGET spreadmap_sdk)
     target_link_libraries(${t} PRIVATE spreadmap_sdk)
   else()

@@ -1,4 +1,4 @@
-// The run directory (DESIGN.md): manifest.json, cases/cNNN/, metrics.csv, train/<model>/, map/.
+// The run directory: manifest.json, cases/cNNN/, metrics.csv, train/<model>/, map/.
 // The manifest is rewritten atomically after every change, so it always describes whole files.
 #pragma once
 #include <filesystem>

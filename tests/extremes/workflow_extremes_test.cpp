@@ -67,7 +67,7 @@ class BinaryRun {
     fs::remove_all(dir_);
     fs::create_directories(dir_);
     std::ofstream(dir_ / "wf.yaml") << workflow_text(scene);
-    outcome_ = test::run({{"run", (dir_ / "wf.yaml").string(), "--out", out().string()}});
+    outcome_ = test::run({{"run", (dir_ / "wf.yaml").string(), "--out", out().string()}, {}, {}, {}});
   }
   ~BinaryRun() {
     if (!::testing::Test::HasFailure()) fs::remove_all(dir_);
@@ -99,12 +99,16 @@ void expect_no_non_finite_files(const fs::path &dir) {
     const fs::path p = entry.path();
     const std::string text = slurp(p);
     EXPECT_FALSE(std::regex_search(text, token)) << p << " holds a NaN or infinity";
-    if (p.extension() == ".vtp") EXPECT_EQ(first_non_finite(spreadmap::engine::read_vtp(p).particles), "") << p;
+    if (p.extension() == ".vtp") {
+      EXPECT_EQ(first_non_finite(spreadmap::engine::read_vtp(p).particles), "") << p;
+    }
     if (p.extension() == ".json") {
       std::function<void(const nlohmann::json &, const std::string &)> walk = [&](const nlohmann::json &j,
                                                                                  const std::string &at) {
         if (j.is_null() && p.filename() == "case.json") ADD_FAILURE() << p << ": null at " << at << " (a NaN?)";
-        if (j.is_number_float()) EXPECT_TRUE(std::isfinite(j.get<double>())) << p << " at " << at;
+        if (j.is_number_float()) {
+          EXPECT_TRUE(std::isfinite(j.get<double>())) << p << " at " << at;
+        }
         if (j.is_structured())
           for (auto it = j.begin(); it != j.end(); ++it) walk(*it, at + "/" + (j.is_object() ? it.key() : "[]"));
       };

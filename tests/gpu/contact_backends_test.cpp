@@ -18,6 +18,7 @@
 #include "cuda/forces.hpp"
 #include "gpu/plugin_params.hpp"
 #include "gpu/random_packing.hpp"
+#include "verification/contact_laws.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;
@@ -81,6 +82,14 @@ const std::vector<LawCase> &law_cases() {
       {"hertz_mindlin", {{"youngs_modulus", 1e8}, {"clamp_normal", true}, {"rolling_friction", 0.1}}, "hertz_mindlin_clamped"},
   };
   return cases;
+}
+
+// The cases above vary each law's parameters; every law of the shared list must have one.
+TEST(ContactBackendCases, CoverEveryContactLaw) {
+  const auto &cases = law_cases();
+  for (const char *name : sm::test::ContactLaws::names())
+    EXPECT_TRUE(std::any_of(cases.begin(), cases.end(), [&](const LawCase &c) { return c.name == name; }))
+        << name << " has no case in law_cases()";
 }
 
 class ContactBackends : public ::testing::TestWithParam<LawCase> {

@@ -6,8 +6,7 @@ endif()
 spreadmap_test(gpu contact_backends
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/contact_backends_test.cpp
   LIBS spreadmap_cuda)
-add_dependencies(test_gpu_contact_backends plugin_contact_hooke_slider plugin_contact_hooke_history
-                 plugin_contact_hertz_mindlin plugin_spreader_roller plugin_spreader_blade)
+add_dependencies(test_gpu_contact_backends ${spreadmap_contact_plugins} plugin_spreader_roller plugin_spreader_blade)
 spreadmap_test(gpu engine_backends
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_backends_test.cpp
   LIBS spreadmap_workflow spreadmap_cuda)

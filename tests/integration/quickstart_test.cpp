@@ -112,7 +112,9 @@ TEST_F(Quickstart, FasterSpreaderSpreadsMorePowderPerSecond) {
   const auto u = t.numbers("U"), w = t.numbers("omega"), vs = t.numbers("vs");
   for (std::size_t i = 0; i < t.rows(); ++i)
     for (std::size_t j = 0; j < t.rows(); ++j)
-      if (w[i] == w[j] && u[j] > u[i]) EXPECT_GT(vs[j], vs[i]) << "omega " << w[i] << ": U " << u[i] << " -> " << u[j];
+      if (w[i] == w[j] && u[j] > u[i]) {
+        EXPECT_GT(vs[j], vs[i]) << "omega " << w[i] << ": U " << u[i] << " -> " << u[j];
+      }
 }
 
 TEST_F(Quickstart, EveryCaseHasItsStateHeightMapAndMetrics) {

@@ -80,7 +80,9 @@ TEST(AnalysisOptimum, FrontierIsAMonotoneStaircaseOnTheTrueCurve) {
   ASSERT_GE(f.rows(), 40u);
   const auto level = f.numbers("rq_level"), vs = f.numbers("vs_max"), rq = f.numbers("rq");
   for (std::size_t i = 0; i < f.rows(); ++i) {
-    if (i) EXPECT_GE(vs[i], vs[i - 1]);
+    if (i) {
+      EXPECT_GE(vs[i], vs[i - 1]);
+    }
     EXPECT_LE(rq[i], level[i]);
     EXPECT_LE(std::abs(vs[i] - std::min(1.0, std::sqrt(level[i]))), 0.01 + 1e-12) << "level " << level[i];
   }

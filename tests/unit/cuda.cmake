@@ -21,5 +21,5 @@ spreadmap_test(unit cuda_plugins
   LIBS spreadmap_cuda)
 target_compile_definitions(test_unit_cuda_plugins PRIVATE
   SPREADMAP_CPU_ONLY_MODULE="${CMAKE_CURRENT_BINARY_DIR}/cuda_modules/contact/cpu_only_spring.so")
-add_dependencies(test_unit_cuda_plugins test_cuda_cpu_only_spring plugin_contact_hooke_slider
-                 plugin_contact_hooke_history plugin_contact_hertz_mindlin plugin_spreader_roller plugin_spreader_blade)
+add_dependencies(test_unit_cuda_plugins test_cuda_cpu_only_spring ${spreadmap_contact_plugins}
+                 plugin_spreader_roller plugin_spreader_blade)

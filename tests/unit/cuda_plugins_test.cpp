@@ -15,6 +15,7 @@
 #include "cuda/backend.hpp"
 #include "cuda/plugin_kernels.hpp"
 #include "gpu/plugin_params.hpp"
+#include "verification/contact_laws.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;
@@ -49,6 +50,12 @@ struct Name {
 };
 void PrintTo(const Name &n, std::ostream *os) { *os << n.text; }
 
+std::vector<Name> contact_plugins() {
+  std::vector<Name> names;
+  for (const char *name : sm::test::ContactLaws::names()) names.push_back({name});
+  return names;
+}
+
 class CudaContactPlugin : public ::testing::TestWithParam<Name> {};
 class CudaSpreaderPlugin : public ::testing::TestWithParam<Name> {};
 
@@ -72,8 +79,7 @@ TEST_P(CudaSpreaderPlugin, CarriesKernels) {
   EXPECT_EQ(exported_c_symbols(plugin.file), "sm_spreader_cuda_v1\nspreadmap_plugin_v1\n");
 }
 
-INSTANTIATE_TEST_SUITE_P(InTree, CudaContactPlugin,
-                         ::testing::Values(Name{"hooke_slider"}, Name{"hooke_history"}, Name{"hertz_mindlin"}));
+INSTANTIATE_TEST_SUITE_P(InTree, CudaContactPlugin, ::testing::ValuesIn(contact_plugins()));
 INSTANTIATE_TEST_SUITE_P(InTree, CudaSpreaderPlugin, ::testing::Values(Name{"roller"}, Name{"blade"}));
 
 TEST(CudaPlugins, APluginBuiltWithoutCudaIsRefusedWithTheFix) {

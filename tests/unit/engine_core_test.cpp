@@ -237,7 +237,9 @@ TEST(EngineDeterminism, ReadingTheStateBetweenStepsChangesNoBit) {
     read_every_step.run_steps(1);
     EXPECT_TRUE(std::isfinite(read_every_step.arrays().vz[0]));  // the read runs the pending kick
     read_rarely.run_steps(1);
-    if (s == 199) EXPECT_TRUE(same_state(read_every_step, read_rarely)) << "the states read half way differ";
+    if (s == 199) {
+      EXPECT_TRUE(same_state(read_every_step, read_rarely)) << "the states read half way differ";
+    }
   }
   EXPECT_GT(read_rarely.counters().list_builds, 2u);
   EXPECT_TRUE(same_state(read_every_step, read_rarely));

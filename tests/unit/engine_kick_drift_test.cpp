@@ -96,7 +96,9 @@ template <class Real> void check_kick_drift() {
     EXPECT_EQ(result.largest, largest) << n << " particles";
     EXPECT_EQ(result.escaped, 0u);
     EXPECT_EQ(result.nonfinite, 0u);
-    if (n == 1000) EXPECT_GT(crossed, 10u) << "some particles should have wrapped around y";
+    if (n == 1000) {
+      EXPECT_GT(crossed, 10u) << "some particles should have wrapped around y";
+    }
   }
 }
 
@@ -161,7 +163,9 @@ template <class Real> void check_fused_pass(bool rotate) {
       for (std::size_t i = 0; i < n; ++i)
         ASSERT_EQ(std::bit_cast<Bits>((*a[c])[i]), std::bit_cast<Bits>((*b[c])[i]))
             << "column " << c << ", particle " << i << " of " << n << (rotate ? ", rotating" : "");
-    if (rotate) EXPECT_NE(fused.wx[0], Particles<Real>(n, 11).wx[0]) << "the spins were kicked";
+    if (rotate) {
+      EXPECT_NE(fused.wx[0], Particles<Real>(n, 11).wx[0]) << "the spins were kicked";
+    }
   }
 }
 }  // namespace

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "clipped_sphere.hpp"
 
@@ -33,17 +34,16 @@ double numeric_box_volume(double a0, double a1, double b0, double b1) {
                                  0.1834346424956498,  0.5255324099163290,  0.7966664774136267,  0.9602898564975363};
   static const double weight[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873, 0.3626837833783620,
                                    0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
-  double cuts[6] = {std::max(a0, -1.0), std::min(a1, 1.0), 0, 0, 0, 0};
-  int n = 2;
+  std::vector<double> cuts{std::max(a0, -1.0), std::min(a1, 1.0)};
   for (double b : {b0, b1})
     if (std::abs(b) < 1) {
       const double k = std::sqrt(1 - b * b);
       for (double c : {-k, k})
-        if (c > cuts[0] && c < cuts[1]) cuts[n++] = c;
+        if (c > cuts[0] && c < cuts[1]) cuts.push_back(c);
     }
-  std::sort(cuts, cuts + n);
+  std::sort(cuts.begin(), cuts.end());
   double total = 0;
-  for (int p = 0; p + 1 < n; ++p) {
+  for (std::size_t p = 0; p + 1 < cuts.size(); ++p) {
     const double mid = 0.5 * (cuts[p] + cuts[p + 1]), half = 0.5 * (cuts[p + 1] - cuts[p]);
     const int panels = 400;  // in u = 0..pi
     for (int q = 0; q < panels; ++q) {

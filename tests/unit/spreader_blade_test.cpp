@@ -117,8 +117,9 @@ TEST(SpreaderBlade, OutlineIsTheRoundedRectangle) {
   for (std::uint32_t k = 0; k < d.vertices; ++k) {
     x_lo = std::min(x_lo, d.x[k]), x_hi = std::max(x_hi, d.x[k]);
     z_lo = std::min(z_lo, d.z[k]), z_hi = std::max(z_hi, d.z[k]);
-    if (d.z[k] < 0.25e-3 && std::abs(d.x[k]) > half_t - 0.25e-3)  // on an arc: 0.25 mm from its centre
+    if (d.z[k] < 0.25e-3 && std::abs(d.x[k]) > half_t - 0.25e-3) {  // on an arc: 0.25 mm from its centre
       EXPECT_NEAR(std::hypot(std::abs(d.x[k]) - (half_t - 0.25e-3), d.z[k] - 0.25e-3), 0.25e-3, 1e-15);
+    }
   }
   EXPECT_NEAR(x_lo, -half_t, 1e-15);
   EXPECT_NEAR(x_hi, half_t, 1e-15);

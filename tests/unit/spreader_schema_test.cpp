@@ -24,7 +24,7 @@ template <std::size_t N> void lint(const sm_param_v1 (&params)[N], const char *p
   std::set<std::string> names;
   for (const auto &p : params) {
     SCOPED_TRACE(std::string(plugin) + "." + p.name);
-    // U is the documented exception to snake_case (STYLE.md section 6).
+    // U is the documented exception to snake_case: a symbol users type every day, like omega.
     EXPECT_TRUE(std::regex_match(p.name, snake) || std::string(p.name) == "U");
     EXPECT_TRUE(names.insert(p.name).second) << "duplicate name";
     ASSERT_NE(p.unit, nullptr);

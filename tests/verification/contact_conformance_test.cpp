@@ -1,9 +1,7 @@
 // Conformance of every contact law (one typed suite over all of them): no force and no memory when
 // apart, equal and opposite forces seen from both sides, the documented restitution, no energy gain
 // at eps = 1, rotation invariance and finite output across the schema ranges.
-#include "plugins/contact/hertz_mindlin/hertz_mindlin.hpp"
-#include "plugins/contact/hooke_history/hooke_history.hpp"
-#include "plugins/contact/hooke_slider/hooke_slider.hpp"
+#include "verification/contact_laws.hpp"
 #include "verification/contact_support.hpp"
 
 #include <gtest/gtest.h>
@@ -73,8 +71,7 @@ template <class Law> Integrator<Law> collide(const Law &law, V3 v_rel, V3 w0, V3
 }
 
 template <class Law> class ContactConformance : public ::testing::Test {};
-using Laws = ::testing::Types<sm::HookeSlider, sm::HookeHistory, sm::HertzMindlin>;
-TYPED_TEST_SUITE(ContactConformance, Laws);
+TYPED_TEST_SUITE(ContactConformance, sm::test::ContactLaws::Types);
 
 TYPED_TEST(ContactConformance, ApartMeansNoForceAndNoMemory) {
   const auto law = make<TypeParam>({{"rolling_friction", 0.1}});

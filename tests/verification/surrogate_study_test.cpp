@@ -157,6 +157,7 @@ TEST(SurrogateStudy, AdaptiveDesignMatchesTheFullFactorialWithHalfTheCases) {
   EXPECT_LE(evaluations, 22u);
   EXPECT_LE(e_adaptive, e_full);
   EXPECT_EQ(r.history.back().cases, evaluations);
-  if (r.reached_target)
+  if (r.reached_target) {
     for (double e : r.history.back().loo_nrmse) EXPECT_LE(e, o.target_loo_nrmse);
+  }
 }

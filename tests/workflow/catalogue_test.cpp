@@ -138,10 +138,13 @@ TEST_P(Catalogue, IsRejectedWithAClearMessage) {
     EXPECT_NE(r.err.find(e.key), std::string::npos) << "the message does not name " << e.key << ":\n" << r.err;
   }
   for (const auto &text : e.texts) EXPECT_NE(r.err.find(text), std::string::npos) << "missing '" << text << "' in\n" << r.err;
-  if (e.errors >= 0) EXPECT_EQ(count_errors(r.err), std::size_t(e.errors)) << r.err;
+  if (e.errors >= 0) {
+    EXPECT_EQ(count_errors(r.err), std::size_t(e.errors)) << r.err;
+  }
   EXPECT_EQ(temporaries(out), std::vector<std::string>{});
-  if (!e.command.empty() && e.command.front() == "run")
+  if (!e.command.empty() && e.command.front() == "run") {
     EXPECT_FALSE(fs::exists(out)) << "an invalid workflow must be refused before the run directory is made";
+  }
   fs::remove_all(out);
 }
 

@@ -74,8 +74,9 @@ TEST(Cli, PluginsAsJsonCarryTheWholeSchema) {
     for (const auto &param : p.at("params")) {
       for (const char *field : {"name", "type", "unit", "doc", "required"}) EXPECT_TRUE(param.contains(field)) << param.dump();
       EXPECT_FALSE(param.at("doc").get<std::string>().empty()) << p.at("name") << "." << param.at("name") << " has no doc";
-      if (!param.at("required").get<bool>() && param.at("type") != "table")
+      if (!param.at("required").get<bool>() && param.at("type") != "table") {
         EXPECT_TRUE(param.contains("default")) << param.dump();
+      }
     }
   }
   EXPECT_EQ(seen, kinds);

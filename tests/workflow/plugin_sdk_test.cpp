@@ -1,7 +1,9 @@
 // The out-of-tree plugin: `cmake --install` of this build into a fresh prefix, then the sample in
 // tests/plugin_sdk/ configured with find_package(spreadmap) against that prefix only, built, and
 // loaded by the installed binary through SPREADMAP_PLUGIN_PATH, which must list its schema. The
-// installed binary must also find the installed in-tree plugins without any variable.
+// installed binary must also find the installed in-tree plugins without any variable. The plugin
+// compiles with the project's warnings (-Wall -Wextra, from the installed SpreadmapWarnings.cmake)
+// and prints none.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -34,6 +36,7 @@ TEST(OutOfTreePlugin, BuildsAgainstTheInstalledSdkAndLoads) {
   for (const char *f : {"bin/spreadmap", "include/spreadmap/abi.h", "include/spreadmap/contact.hpp",
                         "lib/cmake/spreadmap/spreadmapConfig.cmake", "lib/cmake/spreadmap/spreadmapConfigVersion.cmake",
                         "lib/cmake/spreadmap/spreadmapTargets.cmake", "lib/cmake/spreadmap/SpreadmapPlugin.cmake",
+                        "lib/cmake/spreadmap/SpreadmapWarnings.cmake",
                         "lib/spreadmap/plugins/contact/hooke_slider.so", "lib/spreadmap/plugins/spreader/roller.so"})
     EXPECT_TRUE(fs::exists(prefix / f)) << f << " is not installed";
 
@@ -41,8 +44,10 @@ TEST(OutOfTreePlugin, BuildsAgainstTheInstalledSdkAndLoads) {
                                 "-DCMAKE_PREFIX_PATH=" + prefix.string(), "-DCMAKE_BUILD_TYPE=Release",
                                 "-DCMAKE_CXX_COMPILER=" SPREADMAP_CXX_COMPILER});
   ASSERT_EQ(configure.exit_code, 0) << configure.describe();
-  const auto compile = cmake({"--build", build.string(), "-j", "2"});
+  const auto compile = cmake({"--build", build.string(), "-j", "2", "--verbose"});
   ASSERT_EQ(compile.exit_code, 0) << compile.describe();
+  EXPECT_TRUE(contains(compile.out, " -Wall ") && contains(compile.out, " -Wextra ")) << compile.out;
+  EXPECT_FALSE(contains(compile.out + compile.err, "warning:")) << compile.out << compile.err;
   const fs::path plugins = build / "lib" / "spreadmap" / "plugins";
   const fs::path library = plugins / "contact" / "soft_spring.so";
   ASSERT_TRUE(fs::exists(library));

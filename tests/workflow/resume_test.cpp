@@ -135,7 +135,9 @@ TEST(KillAndResume, FinishedCasesAreNeverRecomputedAndNoPartialFileIsLeft) {
   EXPECT_TRUE(contains(second.err, std::to_string(n_cases) + " cases, " + std::to_string(todo.size()) + " to run, " +
                                        std::to_string(done.size()) + " finished already"))
       << second.err;
-  if (checkpointed) EXPECT_TRUE(contains(second.err, todo.front() + ": resuming from its checkpoint")) << second.err;
+  if (checkpointed) {
+    EXPECT_TRUE(contains(second.err, todo.front() + ": resuming from its checkpoint")) << second.err;
+  }
   for (const auto &[file, id] : kept) EXPECT_EQ(identify(run / "cases" / file), id) << file << " was rewritten";
   for (const auto &[id, timing] : timings) {
     const auto now = manifest_case(run, id);

@@ -98,7 +98,7 @@ std::string format_value(double v, double step) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", std::min(decimals, 8), v);
   std::string s = buf;
-  if (s == "-0" || s.rfind("-0.", 0) == 0 && std::stod(s) == 0) s = s.substr(1);
+  if (s == "-0" || (s.rfind("-0.", 0) == 0 && std::stod(s) == 0)) s = s.substr(1);
   return s;
 }
 

@@ -21,7 +21,7 @@
 // within the round-off of the normal speed for none (slip_round_off): a head-on impact has no
 // friction, even with slip_speed_min = 0.
 // Optional rolling resistance (constant directional torque, see contact_parts.hpp).
-// Reference: the study in /work/shared/reference-study.txt; Cundall & Strack 1979. Units SI.
+// References: the reference study (its Eq. 1-4); Cundall & Strack 1979. Units SI.
 // History: none.
 #pragma once
 #include <spreadmap/contact.hpp>
