@@ -152,12 +152,13 @@ int main(int argc, char **argv) {
 
   // The peers' scene as the simulate stage resolves it; the case at omega (0 by default), heap seed 1.
   sm::Diagnostics diag;
-  nlohmann::json scene = sm::resolve_scene(sm::load_workflow(opt.workflow), registry, diag);
+  const auto resolved = sm::resolve_scene(sm::load_workflow(opt.workflow), registry, diag);
   diag.throw_if_any();
-  scene["spreader"]["params"]["omega"] = opt.omega;
-  scene["backend"] = opt.backend;
-  scene["powder"]["seed"] = 1;
-  if (scene["precision"] != "double") usage("the workflow's scene is not in double precision");
+  sm::Scene scene = *resolved;
+  scene.spreader.params["omega"] = opt.omega;
+  scene.backend = opt.backend;
+  scene.powder.seed = 1;
+  if (scene.precision != sm::Precision::float64) usage("the workflow's scene is not in double precision");
 
   sm::engine::ParticleSet heap;
   if (!opt.heap.empty()) {
@@ -165,7 +166,7 @@ int main(int argc, char **argv) {
     std::printf("heap: %zu spheres read from %s\n", heap.size(), opt.heap.c_str());
   } else {
     omp_set_num_threads(std::min(2, omp_get_num_procs()));
-    std::printf("heap: settling %s s of a new heap (seed 1) ...\n", scene["powder"]["settle_time"].dump().c_str());
+    std::printf("heap: settling %s s of a new heap (seed 1) ...\n", nlohmann::json(scene.powder.settle_time).dump().c_str());
     std::fflush(stdout);
     const auto t0 = std::chrono::steady_clock::now();
     heap = sm::settle_heap<double>(scene, registry, "bench", opt.workflow);
@@ -176,9 +177,9 @@ int main(int argc, char **argv) {
       std::printf("heap: written to %s (reuse it with --heap)\n", opt.save_heap.c_str());
     }
   }
-  if (heap.size() != scene["powder"]["count"].get<std::size_t>())
-    std::printf("warning: the heap has %zu spheres, the scene asks for %s\n", heap.size(),
-                scene["powder"]["count"].dump().c_str());
+  if (heap.size() != static_cast<std::size_t>(scene.powder.count))
+    std::printf("warning: the heap has %zu spheres, the scene asks for %lld\n", heap.size(),
+                static_cast<long long>(scene.powder.count));
 
   // --skip: one untimed run to the starting point, kept as a checkpoint every repeat resumes from.
   const fs::path checkpoint = fs::temp_directory_path() / ("bench_peer_scene_" + std::to_string(::getpid()) + ".bin");
@@ -189,7 +190,7 @@ int main(int argc, char **argv) {
     run->sim.save_checkpoint(checkpoint);
   }
 
-  const double dt = scene["time"]["step"];
+  const double dt = scene.time.step;
   std::printf("bench_peer_scene: the spreading scene of %s, double precision, dt = %.3g s, omega = %g rad/s, backend %s\n",
               opt.workflow.filename().c_str(), dt, opt.omega, opt.backend.c_str());
   std::printf("machine: %s, %u hardware threads (OpenMP sees %d processors); load average at start %s\n",
@@ -200,8 +201,8 @@ int main(int argc, char **argv) {
   std::printf("timed: %llu spreading steps from t = %.4g s (roller x = %.2f mm), %d repeats per thread count, "
               "interleaved\n",
               static_cast<unsigned long long>(opt.steps), opt.skip * dt,
-              1e3 * (scene["spreader"]["params"]["start"].get<double>() +
-                     scene["spreader"]["params"]["U"].get<double>() * opt.skip * dt),
+              1e3 * (scene.spreader.params["start"].get<double>() +
+                     scene.spreader.params["U"].get<double>() * opt.skip * dt),
               opt.repeats);
   std::fflush(stdout);
 

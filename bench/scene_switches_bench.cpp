@@ -56,11 +56,11 @@ struct Variant {
 // The quickstart's strip stretched to 80 mm of travel with a heap to match (4000 spheres): most of
 // the powder ends in the layer behind the roller, as in the study's 100 mm plate, which is where
 // sleeping can save anything.
-nlohmann::json long_strip(nlohmann::json scene) {
-  scene["domain"]["length"] = 0.1;
-  scene["powder"]["count"] = 4000;
-  scene["powder"]["heap_to"] = 0.024;
-  scene["spreader"]["params"]["travel"] = 0.08;
+sm::Scene long_strip(sm::Scene scene) {
+  scene.domain.length = 0.1;
+  scene.powder.count = 4000;
+  scene.powder.heap_to = 0.024;
+  scene.spreader.params["travel"] = 0.08;
   return scene;
 }
 
@@ -86,37 +86,34 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-nlohmann::json variant_scene(nlohmann::json scene, const Variant &v) {
+sm::Scene variant_scene(sm::Scene scene, const Variant &v) {
   if (v.sleep) {
-    scene["time"]["sleep"] = true;
-    scene["time"]["sleep_speed"] = v.sleep_speed;
-    scene["time"]["sleep_behind"] = v.sleep_behind;
+    scene.time.sleep = true;
+    scene.time.sleep_speed = v.sleep_speed;
+    scene.time.sleep_behind = v.sleep_behind;
   }
   if (v.frictionless)
-    for (const char *law : {"/contact/params", "/substrate/law", "/spreader/law"}) {
-      const nlohmann::json::json_pointer p(law);
-      if (!scene.contains(p)) continue;
-      scene[p]["friction"] = 0.0;
-      if (scene[p].contains("rolling_friction")) scene[p]["rolling_friction"] = 0.0;
+    for (nlohmann::json *law : {&scene.contact.params, &scene.substrate.law, &scene.spreader.law}) {
+      (*law)["friction"] = 0.0;
+      if (law->contains("rolling_friction")) (*law)["rolling_friction"] = 0.0;
     }
   return scene;
 }
 
-Outcome spread(const nlohmann::json &scene, sm::PluginRegistry &registry, const sm::engine::ParticleSet &heap,
+Outcome spread(const sm::Scene &scene, sm::PluginRegistry &registry, const sm::engine::ParticleSet &heap,
                const Variant &v, const fs::path &scene_file) {
   auto run = sm::make_spreading_run<double>(scene, registry, heap, scene_file);
   auto &sim = run->sim;
   if (v.force_rotation) sim.force_rotation(true);
   if (v.idle_walls) {
-    const auto &d = scene["domain"];
     const sm::engine::ContactLaw law = run->plugins.law(run->plugins.substrate);
     // 1 mm outside the domain's top and back faces: nothing inside can reach them
-    const double h = d["height"];
+    const double h = scene.domain.height;
     sim.add_plane_wall({{0, 0, h + 1e-3}, {0, 0, -1}, {0, 0, 0}, law, true, "ceiling"});
     sim.add_plane_wall({{-1e-3, 0, 0}, {1, 0, 0}, {0, 0, 0}, law, true, "back wall"});
   }
   const auto spreader = run->plugins.spreader_description();
-  const double duration = spreader.duration + scene["time"]["relax"].get<double>();
+  const double duration = spreader.duration + scene.time.relax;
   const auto t0 = std::chrono::steady_clock::now();
   sm::run_spreading(sim, run->plugins, scene, duration);
   Outcome o;
@@ -127,7 +124,7 @@ Outcome spread(const nlohmann::json &scene, sm::PluginRegistry &registry, const 
   const sm::engine::ParticleSet s = sim.state();
   sm::LayerRequest rq;
   rq.region = sm::default_region(scene, spreader);
-  rq.periodic_y = std::make_pair(0.0, scene["domain"]["width"].get<double>());
+  rq.periodic_y = std::make_pair(0.0, scene.domain.width);
   sm::take_spreader(rq, spreader);
   {
     sm::Diagnostics diag;  // the layer plugin's defaults (cell d/5), as the characterise stage uses them
@@ -163,10 +160,11 @@ int main(int argc, char **argv) {
   sm::PluginRegistry registry(sm::PluginRegistry::default_roots());
   const fs::path workflow = fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml";
   sm::Diagnostics diag;
-  nlohmann::json scene = sm::resolve_scene(sm::load_workflow(workflow), registry, diag);
+  const auto resolved = sm::resolve_scene(sm::load_workflow(workflow), registry, diag);
   diag.throw_if_any();
-  scene["spreader"]["params"]["U"] = 0.1;
-  scene["spreader"]["params"]["omega"] = 0.0;
+  sm::Scene scene = *resolved;
+  scene.spreader.params["U"] = 0.1;
+  scene.spreader.params["omega"] = 0.0;
 
   const std::vector<Variant> variants = {
       {"reference", "reference"},
@@ -184,7 +182,7 @@ int main(int argc, char **argv) {
 
   std::vector<std::vector<Outcome>> out(variants.size());
   for (int h = 1; h <= heaps; ++h) {
-    scene["powder"]["seed"] = h;
+    scene.powder.seed = h;
     omp_set_num_threads(std::min(2, omp_get_num_procs()));
     const auto heap = sm::settle_heap<double>(scene, registry, "bench", workflow);
     const auto long_heap = sm::settle_heap<double>(long_strip(scene), registry, "bench", workflow);

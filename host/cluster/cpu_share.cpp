@@ -17,9 +17,9 @@ int default_threads_per_rank(int ranks_on_node) {
   return std::max(1, mine / std::max(1, ranks_on_node));
 }
 
-int rank_threads(const nlohmann::json &scene, int requested, int ranks_on_node) {
+int rank_threads(const Scene &scene, int requested, int ranks_on_node) {
   if (requested > 0) return requested;
-  if (scene.value("threads", 0) > 0) return scene.value("threads", 0);
+  if (scene.threads > 0) return static_cast<int>(scene.threads);
   return default_threads_per_rank(ranks_on_node);
 }
 

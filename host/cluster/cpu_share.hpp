@@ -1,6 +1,6 @@
 // How many OpenMP threads a rank's case gets when --threads-per-rank is not given.
 #pragma once
-#include <nlohmann/json.hpp>
+#include "workflow/scene_model.hpp"
 
 namespace spreadmap::cluster {
 
@@ -11,6 +11,6 @@ int default_threads_per_rank(int ranks_on_node);
 
 // The threads of one case on a rank: --threads-per-rank when given, else scene.threads when set,
 // else the default above.
-int rank_threads(const nlohmann::json &scene, int requested, int ranks_on_node);
+int rank_threads(const Scene &scene, int requested, int ranks_on_node);
 
 }  // namespace spreadmap::cluster

@@ -69,7 +69,7 @@ void SlurmExecutor::run_cases(CaseBatch &batch, StageContext &ctx) {
   plan.binary = fs::canonical("/proc/self/exe");
   plan.workflow = fs::absolute(ctx.wf.file);
   plan.out = fs::absolute(ctx.run.root());
-  const int scene_threads = ctx.scene.value("threads", 0);
+  const int scene_threads = static_cast<int>(ctx.scene.threads);
   plan.threads = threads_ > 0 ? threads_ : scene_threads > 0 ? scene_threads : 1;
   plan.force = ctx.options.force;
   const HeapOrder order = order_by_heap(batch.jobs, ctx.registry);

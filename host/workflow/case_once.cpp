@@ -26,7 +26,7 @@ nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool rende
     if (!ran) cases.back()["status"] = "done";
   });
   if (ran) {
-    write_atomic(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry).dump(2) + "\n");  // as the engine runs it
+    write_scene_file(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry));  // as the engine runs it
     CaseBatch batch{{{0, req, render}}, 1, stage};
     LocalExecutor(1, ctx.options.case_threads).run_cases(batch, ctx);
   }
@@ -34,7 +34,7 @@ nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool rende
   return nlohmann::json::parse(read_text(req.dir / "case.json"));
 }
 
-LayerResult measure_case_layer(PluginRegistry &registry, const nlohmann::json &scene, const fs::path &dir) {
+LayerResult measure_case_layer(PluginRegistry &registry, const Scene &scene, const fs::path &dir) {
   const LoadedPlugin &layer = registry.get("metrics", "layer");
   Diagnostics diag;
   LayerRequest lr;
@@ -42,7 +42,7 @@ LayerResult measure_case_layer(PluginRegistry &registry, const nlohmann::json &s
   diag.throw_if_any();
   const auto spreader = describe_spreader(scene, registry, dir / "scene.json");
   lr.region = default_region(scene, spreader);
-  if (scene["domain"]["periodic_y"].get<bool>()) lr.periodic_y = std::make_pair(0.0, scene["domain"]["width"].get<double>());
+  if (scene.domain.periodic_y) lr.periodic_y = std::make_pair(0.0, scene.domain.width);
   take_spreader(lr, spreader);
   return characterise_layer(registry, lr, read_particle_file(dir / "state.vtp"));
 }

@@ -19,6 +19,6 @@ nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool rende
 
 // The layer metrics of a finished case over the scene's default sampling region, with the
 // metrics plugin's default parameters.
-LayerResult measure_case_layer(PluginRegistry &registry, const nlohmann::json &scene, const fs::path &dir);
+LayerResult measure_case_layer(PluginRegistry &registry, const Scene &scene, const fs::path &dir);
 
 }  // namespace spreadmap

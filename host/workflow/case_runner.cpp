@@ -31,7 +31,7 @@ std::mutex heap_mutex;
 std::map<std::string, std::shared_ptr<std::mutex>> heap_locks;
 
 template <class Real>
-ParticleSet settled_heap(const nlohmann::json &scene, PluginRegistry &reg, const CaseRequest &req) {
+ParticleSet settled_heap(const Scene &scene, PluginRegistry &reg, const CaseRequest &req) {
   const std::string key = heap_hash(scene, reg);
   std::shared_ptr<std::mutex> lock;
   {
@@ -78,9 +78,9 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
     }
   }
   const auto spreader = plugins.spreader_description();
-  const double duration = spreader.duration + scene["time"]["relax"].get<double>();
-  const double interval = scene["time"]["checkpoint_interval"];
-  const int snapshots = scene["time"]["snapshots"];
+  const double duration = spreader.duration + scene.time.relax;
+  const double interval = scene.time.checkpoint_interval;
+  const int snapshots = static_cast<int>(scene.time.snapshots);
   auto last_checkpoint = std::chrono::steady_clock::now();
   const auto t0 = last_checkpoint;
   const double steps_before = double(sim.step_count());
@@ -144,7 +144,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
       {"simulated_time", sim.time()}, {"wall_seconds_last_run", wall},
       {"particle_steps_per_second", c.particle_steps_per_second()}, {"list_builds", c.list_builds},
       {"steps_this_run", double(sim.step_count()) - steps_before}, {"rotation_integrated", sim.rotation_integrated()},
-      {"precision", scene["precision"]},
+      {"precision", precision_name(scene.precision)},
       {"spreader", to_json(spreader)},
       {"spreader_end", pose_at(sim.time())},
   };
@@ -162,24 +162,25 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
 
 }  // namespace
 
-std::string case_hash(const nlohmann::json &scene) {
-  nlohmann::json s = scene;
+std::string case_hash(const Scene &scene) {
+  nlohmann::json s = to_json(scene);
   s["time"].erase("checkpoint_interval");
   s.erase("threads");
   s.erase("backend");
   return stable_hash(s.dump());
 }
 
-std::string heap_hash(const nlohmann::json &scene, PluginRegistry &registry) {
-  nlohmann::json s = {{"powder", scene["powder"]}, {"domain", scene["domain"]}, {"contact", scene["contact"]},
-                      {"substrate", scene["substrate"]}, {"gravity", scene["gravity"]},
-                      {"precision", scene["precision"]}, {"time", scene["time"]}};
+std::string heap_hash(const Scene &scene, PluginRegistry &registry) {
+  const nlohmann::json all = to_json(scene);
+  nlohmann::json s = {{"powder", all["powder"]}, {"domain", all["domain"]}, {"contact", all["contact"]},
+                      {"substrate", all["substrate"]}, {"gravity", all["gravity"]},
+                      {"precision", all["precision"]}, {"time", all["time"]}};
   for (const char *k : {"relax", "checkpoint_interval", "snapshots"}) s["time"].erase(k);
   // The spreader as the heap sees it: its law and its body at rest, as it describes itself (its
   // motion, e.g. a speed or a rotation, does not change the heap).
   nlohmann::json body = to_json(describe_spreader(scene, registry, "scene.json"));
   for (const char *k : {"end", "speed", "duration"}) body.erase(k);
-  s["spreader"] = {{"use", scene["spreader"]["use"]}, {"law", scene["spreader"]["law"]}, {"at_rest", body}};
+  s["spreader"] = {{"use", scene.spreader.use}, {"law", scene.spreader.law}, {"at_rest", body}};
   return stable_hash(s.dump());
 }
 
@@ -203,7 +204,7 @@ nlohmann::json run_case(const CaseRequest &request, PluginRegistry &registry) {
   if (request.threads > 0) omp_set_num_threads(request.threads);
   CaseRequest effective = request;  // the scene the engine runs: coarse graining applied
   effective.scene = coarse_grained(request.scene, registry);
-  if (effective.scene["precision"] == "float") return spread<float>(effective, registry);
+  if (effective.scene.precision == Precision::float32) return spread<float>(effective, registry);
   return spread<double>(effective, registry);
 }
 

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/registry.hpp"
+#include "workflow/scene_model.hpp"
 
 namespace spreadmap {
 
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 
 struct CaseRequest {
   std::string id;                 // c000
-  nlohmann::json scene;           // resolved scene of this case (SI)
+  Scene scene;                    // resolved scene of this case (SI)
   nlohmann::json inputs;          // design values of this case (SI)
   fs::path dir;                   // cases/c000
   fs::path heaps;                 // shared folder of settled heaps
@@ -24,11 +25,11 @@ struct CaseRequest {
   std::function<void(double fraction, const std::string &detail)> progress;
 };
 
-// The hash of everything that decides the case's result.
-std::string case_hash(const nlohmann::json &scene);
+// The hash of everything that decides the case's result (of the scene's JSON form).
+std::string case_hash(const Scene &scene);
 // The hash of everything that decides the settled heap (the spreader's part as its plugin describes
 // itself at rest).
-std::string heap_hash(const nlohmann::json &scene, PluginRegistry &registry);
+std::string heap_hash(const Scene &scene, PluginRegistry &registry);
 
 // True when the case folder holds a finished result for exactly these inputs, its state.vtp intact
 // (the size and hash case.json recorded).

@@ -19,14 +19,14 @@ namespace spreadmap {
 
 using engine::ParticleSet;
 
-CasePlugins::CasePlugins(const nlohmann::json &scene, PluginRegistry &reg, const fs::path &scene_file) {
-  const auto &law = reg.get("contact", scene["contact"]["use"].get<std::string>());
-  const auto &geo = reg.get("spreader", scene["spreader"]["use"].get<std::string>());
+CasePlugins::CasePlugins(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file) {
+  const auto &law = reg.get("contact", scene.contact.use);
+  const auto &geo = reg.get("spreader", scene.spreader.use);
   const std::string at = scene_file.string() + ": ";
-  pair = PluginInstance(law, scene["contact"]["params"].dump(), at + "scene.contact");
-  substrate = PluginInstance(law, scene["substrate"]["law"].dump(), at + "scene.substrate");
-  spreader_law = PluginInstance(law, scene["spreader"]["law"].dump(), at + "scene.spreader");
-  spreader = PluginInstance(geo, scene["spreader"]["params"].dump(), at + "scene.spreader");
+  pair = PluginInstance(law, scene.contact.params.dump(), at + "scene.contact");
+  substrate = PluginInstance(law, scene.substrate.law.dump(), at + "scene.substrate");
+  spreader_law = PluginInstance(law, scene.spreader.law.dump(), at + "scene.spreader");
+  spreader = PluginInstance(geo, scene.spreader.params.dump(), at + "scene.spreader");
 }
 
 nlohmann::json to_json(const sm_spreader_description_v2 &d) {
@@ -56,9 +56,9 @@ sm_spreader_pose_v2 CasePlugins::spreader_pose(double t) const {
   return pose;
 }
 
-sm_spreader_description_v2 describe_spreader(const nlohmann::json &scene, PluginRegistry &reg, const fs::path &scene_file) {
-  const auto &geo = reg.get("spreader", scene["spreader"]["use"].get<std::string>());
-  const PluginInstance spreader(geo, scene["spreader"]["params"].dump(), scene_file.string() + ": scene.spreader");
+sm_spreader_description_v2 describe_spreader(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file) {
+  const auto &geo = reg.get("spreader", scene.spreader.use);
+  const PluginInstance spreader(geo, scene.spreader.params.dump(), scene_file.string() + ": scene.spreader");
   sm_spreader_description_v2 d{};
   spreader.ops<sm_spreader_ops_v2>()->describe(spreader.get(), &d);
   return d;
@@ -79,11 +79,11 @@ void add_plane(engine::Simulation<Real> &sim, std::vector<const PluginInstance *
 // kernels of its pair law, of each plane wall's law (plane_laws, from add_plane) and of the spreader
 // with its law.
 template <class Real>
-void attach_backend(engine::Simulation<Real> &sim, const nlohmann::json &scene, const CasePlugins &plugins,
+void attach_backend(engine::Simulation<Real> &sim, const Scene &scene, const CasePlugins &plugins,
                     const std::vector<const PluginInstance *> &plane_laws) {
 #ifdef SPREADMAP_WITH_CUDA
   std::string message;  // said once per run by the simulate stage
-  if (cuda::choose_backend(scene.value("backend", std::string("auto")), message) != cuda::Backend::cuda) return;
+  if (cuda::choose_backend(scene.backend, message) != cuda::Backend::cuda) return;
   cuda::ResidentLaws laws;
   laws.pair = cuda::contact_kernels(*plugins.pair.plugin());
   for (const PluginInstance *law : plane_laws) laws.planes.push_back(cuda::contact_kernels(*law->plugin()));
@@ -96,67 +96,66 @@ void attach_backend(engine::Simulation<Real> &sim, const nlohmann::json &scene, 
 }
 }  // namespace
 
-engine::Domain make_domain(const nlohmann::json &scene) {
-  const auto &d = scene["domain"];
+engine::Domain make_domain(const Scene &scene) {
+  const Domain &d = scene.domain;
   engine::Domain dom;
   dom.lo = {0, 0, 0};
-  dom.hi = {d["length"].get<double>(), d["width"].get<double>(), d["height"].get<double>()};
-  dom.periodic = {d["periodic_x"].get<bool>(), d["periodic_y"].get<bool>(), false};
+  dom.hi = {d.length, d.width, d.height};
+  dom.periodic = {d.periodic_x, d.periodic_y, false};
   return dom;
 }
 
-engine::Settings make_settings(const nlohmann::json &scene, double dt) {
+engine::Settings make_settings(const Scene &scene, double dt) {
   engine::Settings s;
-  const auto &t = scene["time"];
+  const TimeSettings &t = scene.time;
   s.dt = dt;
-  s.dt_safety = t["safety"];
-  s.skin = t["skin"];
-  s.overlap_limit = t["overlap_limit"];
-  s.sleep = t.value("sleep", false);
-  s.sleep_speed = t.value("sleep_speed", 1e-3);
-  s.gravity = {0, 0, -scene["gravity"].get<double>()};
+  s.dt_safety = t.safety;
+  s.skin = t.skin;
+  s.overlap_limit = t.overlap_limit;
+  s.sleep = t.sleep;
+  s.sleep_speed = t.sleep_speed;
+  s.gravity = {0, 0, -scene.gravity};
   s.log = [](const std::string &m) { spdlog::debug("{}", m); };
   return s;
 }
 
 namespace {
-scene::SizeDistribution make_sizes(const nlohmann::json &powder) {
-  const std::string kind = powder["distribution"];
-  if (kind == "lognormal") return scene::SizeDistribution::lognormal(powder["d50"], powder["sigma"]);
-  if (kind == "table") {
+scene::SizeDistribution make_sizes(const Powder &powder) {
+  if (powder.distribution == "lognormal") return scene::SizeDistribution::lognormal(powder.d50, powder.sigma);
+  if (powder.distribution == "table") {
     std::vector<double> d, f;
-    if (!powder["table"].is_array())
+    if (!powder.table.is_array())
       throw InputError("error: scene.powder.table: a table distribution needs table: [{diameter: 250 um, fraction: 0.5}, ...]");
-    for (const auto &row : powder["table"]) {
+    for (const auto &row : powder.table) {
       d.push_back(row.at("diameter").is_number() ? row.at("diameter").get<double>() : 0.0);
       f.push_back(row.at("fraction").is_number() ? row.at("fraction").get<double>() : 0.0);
     }
     return scene::SizeDistribution::table(d, f);
   }
-  return scene::SizeDistribution::monodisperse(powder["diameter"]);
+  return scene::SizeDistribution::monodisperse(powder.diameter);
 }
 }  // namespace
 
 template <class Real>
-ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const std::string &label,
+ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::string &label,
                         const fs::path &scene_file, const std::function<void(double)> &progress) {
-  const auto &powder = scene["powder"];
+  const Powder &powder = scene.powder;
   const auto dom = make_domain(scene);
   CasePlugins plugins(scene, reg, scene_file);
-  const double t_settle = powder["settle_time"], v_rest = powder["settle_speed"];
+  const double t_settle = powder.settle_time, v_rest = powder.settle_speed;
   // The spreader rests at its start for t < 0: while the heap settles it sees times before that.
   const double rest_shift = -(t_settle + 1.0);
 
   scene::HeapSpec spec;
   const auto sizes = make_sizes(powder);
   const double dmax = sizes.upper();
-  const double top = powder["heap_top"].get<double>() > 0 ? powder["heap_top"].get<double>() : dom.hi[2] - dmax;
-  spec.region = {{powder["heap_from"].get<double>(), dom.lo[1], 0.0}, {powder["heap_to"].get<double>(), dom.hi[1], top}};
+  const double top = powder.heap_top > 0 ? powder.heap_top : dom.hi[2] - dmax;
+  spec.region = {{powder.heap_from, dom.lo[1], 0.0}, {powder.heap_to, dom.hi[1], top}};
   spec.periodic_y = dom.periodic[1];
   spec.sizes = sizes;
-  spec.seed = powder["seed"].get<std::uint64_t>();
-  if (powder["volume"].get<double>() > 0) spec.solid_volume = powder["volume"];
-  else spec.count = powder["count"].get<std::size_t>();
+  spec.seed = static_cast<std::uint64_t>(powder.seed);
+  if (powder.volume > 0) spec.solid_volume = powder.volume;
+  else spec.count = static_cast<std::size_t>(powder.count);
   spec.max_top = dom.hi[2] - 0.5 * dmax;
   // No sphere within a twentieth of the largest diameter of the spreader at rest.
   const double clearance = 0.05 * dmax;
@@ -168,11 +167,11 @@ ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const 
   spdlog::info("{}: heap of {} spheres inserted (top {:.2f} mm), settling {:.3g} s", label, heap.size(), heap.top * 1e3,
                t_settle);
 
-  engine::Simulation<Real> sim(dom, plugins.law(plugins.pair), make_settings(scene, scene["time"]["step"]));
+  engine::Simulation<Real> sim(dom, plugins.law(plugins.pair), make_settings(scene, scene.time.step));
   ParticleSet set;
   set.x = heap.x; set.y = heap.y; set.z = heap.z;
   set.radius = heap.r;
-  sim.add_particles(set, powder["density"]);
+  sim.add_particles(set, powder.density);
   std::vector<const PluginInstance *> plane_laws;
   add_plane(sim, plane_laws, plugins, {0, 0, 0}, {0, 0, 1}, plugins.substrate, "substrate");
   add_plane(sim, plane_laws, plugins, {spec.region.lo[0], 0, 0}, {1, 0, 0}, plugins.spreader_law, "heap back wall");
@@ -197,15 +196,15 @@ ParticleSet settle_heap(const nlohmann::json &scene, PluginRegistry &reg, const 
 }
 
 template <class Real>
-std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &scene, PluginRegistry &reg,
+std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const Scene &scene, PluginRegistry &reg,
                                                        const ParticleSet &heap, const fs::path &scene_file) {
   CasePlugins plugins(scene, reg, scene_file);
   const engine::ContactLaw pair = plugins.law(plugins.pair);
   auto run = std::unique_ptr<SpreadingRun<Real>>(new SpreadingRun<Real>{
-      std::move(plugins), engine::Simulation<Real>(make_domain(scene), pair, make_settings(scene, scene["time"]["step"]))});
+      std::move(plugins), engine::Simulation<Real>(make_domain(scene), pair, make_settings(scene, scene.time.step))});
   auto &sim = run->sim;
   const auto &p = run->plugins;
-  sim.add_particles(heap, scene["powder"]["density"]);
+  sim.add_particles(heap, scene.powder.density);
   std::vector<const PluginInstance *> plane_laws;
   add_plane(sim, plane_laws, p, {0, 0, 0}, {0, 0, 1}, p.substrate, "substrate");
   sim.add_geometry({&p.spreader_ops(), p.spreader.get(), p.law(p.spreader_law), p.spreader.plugin()->id()});
@@ -214,10 +213,10 @@ std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const nlohmann::json &sce
 }
 
 template <class Real>
-bool run_spreading(engine::Simulation<Real> &sim, const CasePlugins &plugins, const nlohmann::json &scene, double t_end,
+bool run_spreading(engine::Simulation<Real> &sim, const CasePlugins &plugins, const Scene &scene, double t_end,
                    const typename engine::Simulation<Real>::StepCallback &callback, std::uint64_t every) {
-  const bool sleep = scene["time"].value("sleep", false);
-  const double behind = scene["time"].value("sleep_behind", 5e-3);
+  const bool sleep = scene.time.sleep;
+  const double behind = scene.time.sleep_behind;
   auto follow = [&] {
     if (!sleep) return;
     sim.set_sleep_region(plugins.spreader_pose(sim.time()).x_min - behind);  // behind its trailing edge
@@ -229,19 +228,19 @@ bool run_spreading(engine::Simulation<Real> &sim, const CasePlugins &plugins, co
   }, every);
 }
 
-template ParticleSet settle_heap<double>(const nlohmann::json &, PluginRegistry &, const std::string &, const fs::path &,
+template ParticleSet settle_heap<double>(const Scene &, PluginRegistry &, const std::string &, const fs::path &,
                                          const std::function<void(double)> &);
-template ParticleSet settle_heap<float>(const nlohmann::json &, PluginRegistry &, const std::string &, const fs::path &,
+template ParticleSet settle_heap<float>(const Scene &, PluginRegistry &, const std::string &, const fs::path &,
                                         const std::function<void(double)> &);
 template struct SpreadingRun<double>;
 template struct SpreadingRun<float>;
-template std::unique_ptr<SpreadingRun<double>> make_spreading_run<double>(const nlohmann::json &, PluginRegistry &,
+template std::unique_ptr<SpreadingRun<double>> make_spreading_run<double>(const Scene &, PluginRegistry &,
                                                                           const ParticleSet &, const fs::path &);
-template std::unique_ptr<SpreadingRun<float>> make_spreading_run<float>(const nlohmann::json &, PluginRegistry &,
+template std::unique_ptr<SpreadingRun<float>> make_spreading_run<float>(const Scene &, PluginRegistry &,
                                                                         const ParticleSet &, const fs::path &);
-template bool run_spreading<double>(engine::Simulation<double> &, const CasePlugins &, const nlohmann::json &, double,
+template bool run_spreading<double>(engine::Simulation<double> &, const CasePlugins &, const Scene &, double,
                                     const engine::Simulation<double>::StepCallback &, std::uint64_t);
-template bool run_spreading<float>(engine::Simulation<float> &, const CasePlugins &, const nlohmann::json &, double,
+template bool run_spreading<float>(engine::Simulation<float> &, const CasePlugins &, const Scene &, double,
                                    const engine::Simulation<float>::StepCallback &, std::uint64_t);
 
 }  // namespace spreadmap

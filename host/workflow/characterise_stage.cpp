@@ -22,7 +22,7 @@ const std::set<std::string> host_keys = {"use", "region", "render"};
 
 class CharacteriseStage : public Stage {
  public:
-  void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &scene, PluginRegistry &registry,
+  void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     const YAML::Node &cfg = entry.config;
@@ -34,9 +34,9 @@ class CharacteriseStage : public Stage {
       diag.error(Location::of(file, cfg["use"] ? cfg["use"] : cfg), "characterise.use", e.what());
     }
     if (plugin) request_.params = validate_params(SchemaView::of(*plugin->descriptor), cfg, file, "characterise", diag, host_keys);
-    if (scene.is_null() || !scene.contains("domain")) return;
+    if (!scene) return;
     try {
-      region_ = default_region(scene, describe_spreader(scene, registry, file));
+      region_ = default_region(*scene, describe_spreader(*scene, registry, file));
     } catch (const std::exception &) {
       return;  // the scene's own checks report the spreader's error
     }
@@ -51,8 +51,7 @@ class CharacteriseStage : public Stage {
         read_bounds(r["y"], file, "characterise.region.y", region_.y0, region_.y1, diag);
       }
     }
-    const auto &d = scene["domain"];
-    const double length = d["length"], width = d["width"];
+    const double length = scene->domain.length, width = scene->domain.width;
     if (region_.x0 < 0 || region_.x1 > length || region_.y0 < 0 || region_.y1 > width || region_.x1 <= region_.x0 ||
         region_.y1 <= region_.y0)
       diag.error(Location::of(file, cfg["region"] ? cfg["region"] : entry.config), "characterise.region",
@@ -137,12 +136,11 @@ class CharacteriseStage : public Stage {
   }
 
   nlohmann::json evaluate(StageContext &ctx, const fs::path &dir, const std::string &id, const std::string &key) {
-    const auto scene = nlohmann::json::parse(read_text(dir / "scene.json"));
+    const Scene scene = read_scene_file(dir / "scene.json");
     const auto particles = read_particle_file(dir / "state.vtp");
     LayerRequest rq = request_;
     rq.region = region_;
-    const auto &d = scene["domain"];
-    if (d["periodic_y"].get<bool>()) rq.periodic_y = std::make_pair(0.0, d["width"].get<double>());
+    if (scene.domain.periodic_y) rq.periodic_y = std::make_pair(0.0, scene.domain.width);
     take_spreader(rq, describe_spreader(scene, ctx.registry, dir / "scene.json"));
     const LayerResult r = characterise_layer(ctx.registry, rq, particles);
     for (const auto &w : r.warnings) spdlog::warn("{}: {}", id, w);

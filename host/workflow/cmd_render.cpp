@@ -39,9 +39,9 @@ int cmd_render(int argc, char **argv) {
   const auto particles = read_particle_file(state);
   if (scene_file.empty() && fs::exists(fs::path(state).parent_path() / "scene.json"))
     scene_file = (fs::path(state).parent_path() / "scene.json").string();
-  nlohmann::json scene;
+  Scene scene;
   if (!scene_file.empty()) {
-    scene = nlohmann::json::parse(read_text(scene_file));
+    scene = read_scene_file(scene_file);
   } else {
     // no scene: a box around the particles, no spreader
     double hx = 0, hy = 0, hz = 0;
@@ -50,7 +50,7 @@ int cmd_render(int argc, char **argv) {
       hy = std::max(hy, particles.y[i] + particles.radius[i]);
       hz = std::max(hz, particles.z[i] + particles.radius[i]);
     }
-    scene = {{"domain", {{"length", hx}, {"width", hy}, {"height", hz}}}, {"spreader", {{"use", ""}, {"params", nlohmann::json::object()}}}};
+    scene.domain = {hx, hy, hz, false, false};
   }
   // the spreader as the case recorded it (case.json beside the state: its body and where it stopped)
   nlohmann::json record;

@@ -7,20 +7,19 @@
 
 namespace spreadmap {
 
-nlohmann::json coarse_grained(const nlohmann::json &scene, PluginRegistry &registry) {
-  const double k = scene["powder"].value("coarse_grain", 1.0);
+Scene coarse_grained(const Scene &scene, PluginRegistry &registry) {
+  const double k = scene.powder.coarse_grain;
   if (k == 1) return scene;
-  nlohmann::json s = scene;
-  auto &powder = s["powder"];
-  powder["diameter"] = powder["diameter"].get<double>() * k;
-  powder["d50"] = powder["d50"].get<double>() * k;
-  if (powder.contains("table") && powder["table"].is_array())
-    for (auto &row : powder["table"])
+  Scene s = scene;
+  Powder &powder = s.powder;
+  powder.diameter *= k;
+  powder.d50 *= k;
+  if (powder.table.is_array())
+    for (auto &row : powder.table)
       if (row.contains("diameter") && row["diameter"].is_number()) row["diameter"] = row["diameter"].get<double>() * k;
-  if (powder.value("volume", 0.0) <= 0)
-    powder["count"] = std::max<long long>(1, std::llround(powder["count"].get<double>() / (k * k * k)));
-  const SchemaView law = SchemaView::of(*registry.get("contact", s["contact"]["use"].get<std::string>()).descriptor);
-  for (nlohmann::json *params : {&s["contact"]["params"], &s["substrate"]["law"], &s["spreader"]["law"]})
+  if (powder.volume <= 0) powder.count = std::max<long long>(1, std::llround(double(powder.count) / (k * k * k)));
+  const SchemaView law = SchemaView::of(*registry.get("contact", s.contact.use).descriptor);
+  for (nlohmann::json *params : {&s.contact.params, &s.substrate.law, &s.spreader.law})
     for (std::size_t i = 0; i < law.n; ++i) {
       const sm_param_v1 &p = law.params[i];
       if (p.type == SM_NUMBER && p.unit && std::string(p.unit) == "m" && params->contains(p.name) &&

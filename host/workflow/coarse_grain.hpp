@@ -6,13 +6,12 @@
 // directly (N/m, Pa) are left as they are. The gap, the domain and the spreader are the physical ones:
 // that is what makes coarse graining a fidelity to measure, not a free saving.
 #pragma once
-#include <nlohmann/json.hpp>
-
 #include "core/registry.hpp"
+#include "workflow/scene_model.hpp"
 
 namespace spreadmap {
 
 // The scene with coarse graining applied (k = 1: unchanged), coarse_grain kept as given.
-nlohmann::json coarse_grained(const nlohmann::json &scene, PluginRegistry &registry);
+Scene coarse_grained(const Scene &scene, PluginRegistry &registry);
 
 }  // namespace spreadmap

@@ -98,7 +98,7 @@ std::vector<double> parse_value_list(const YAML::Node &node, const sm_param_v1 &
 }
 
 Design parse_design(const YAML::Node &node, const std::string &file, const std::string &key_path,
-                    const nlohmann::json &scene, PluginRegistry &registry, Diagnostics &diag) {
+                    const Scene &scene, PluginRegistry &registry, Diagnostics &diag) {
   Design d;
   if (!node || node.IsNull()) {
     d.cases.push_back({});  // the scene itself, one case
@@ -242,14 +242,10 @@ Design parse_design(const YAML::Node &node, const std::string &file, const std::
   return d;
 }
 
-nlohmann::json case_scene(const nlohmann::json &scene, const Design &design, std::size_t index) {
-  nlohmann::json s = scene;
-  for (std::size_t k = 0; k < design.variables.size(); ++k) {
-    const auto &var = design.variables[k];
-    const double v = design.cases[index][k];
-    if (var.key.param->type == SM_INTEGER) s[var.key.path] = static_cast<long>(std::llround(v));
-    else s[var.key.path] = v;
-  }
+Scene case_scene(const Scene &scene, const Design &design, std::size_t index) {
+  Scene s = scene;
+  for (std::size_t k = 0; k < design.variables.size(); ++k)
+    apply_scene_value(s, design.variables[k].key, design.cases[index][k]);
   return s;
 }
 

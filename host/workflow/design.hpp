@@ -34,14 +34,14 @@ struct Design {
 };
 
 Design parse_design(const YAML::Node &node, const std::string &file, const std::string &key_path,
-                    const nlohmann::json &scene, PluginRegistry &registry, Diagnostics &diag);
+                    const Scene &scene, PluginRegistry &registry, Diagnostics &diag);
 
 // Parses a list of quantities in the unit of `param` (see above); records errors in diag.
 std::vector<double> parse_value_list(const YAML::Node &node, const sm_param_v1 &param, const std::string &file,
                                      const std::string &key_path, Diagnostics &diag);
 
-// The scene of one case: `scene` with the design variables replaced.
-nlohmann::json case_scene(const nlohmann::json &scene, const Design &design, std::size_t index);
+// The scene of one case: `scene` with the design variables set (apply_scene_value).
+Scene case_scene(const Scene &scene, const Design &design, std::size_t index);
 // {name: value} of one case, SI.
 nlohmann::json case_inputs(const Design &design, std::size_t index);
 

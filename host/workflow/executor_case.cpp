@@ -46,12 +46,12 @@ void draw_snapshot(const CaseRequest &req, const nlohmann::json &c) {
 
 // Which backend this process's cases run on, said once by each process that runs cases (every MPI
 // rank and Slurm task for itself). The stage has already refused a backend that cannot be honoured.
-void say_backend_once(const nlohmann::json &scene) {
+void say_backend_once(const Scene &scene) {
   static std::once_flag said;
   std::call_once(said, [&] {
     std::string note;
     try {
-      cuda::choose_backend(scene.value("backend", std::string("auto")), note);
+      cuda::choose_backend(scene.backend, note);
     } catch (const std::exception &) {
       return;  // the case's own set-up reports it
     }
@@ -64,7 +64,7 @@ void say_backend_once(const nlohmann::json &scene) {
 nlohmann::json job_to_json(const CaseJob &job) {
   const CaseRequest &r = job.request;
   return {{"index", job.index}, {"render", job.render},     {"id", r.id},
-          {"scene", r.scene},   {"inputs", r.inputs},       {"dir", r.dir.string()},
+          {"scene", to_json(r.scene)}, {"inputs", r.inputs},  {"dir", r.dir.string()},
           {"heaps", r.heaps.string()}, {"threads", r.threads}};
 }
 
@@ -73,7 +73,7 @@ CaseJob job_from_json(const nlohmann::json &j) {
   job.index = j.at("index").get<std::size_t>();
   job.render = j.at("render").get<bool>();
   job.request.id = j.at("id").get<std::string>();
-  job.request.scene = j.at("scene");
+  job.request.scene = scene_from_json(j.at("scene"), "the case job's scene");
   job.request.inputs = j.at("inputs");
   job.request.dir = j.at("dir").get<std::string>();
   job.request.heaps = j.at("heaps").get<std::string>();

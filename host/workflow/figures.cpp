@@ -121,7 +121,7 @@ namespace {
 
 // The particles with the spreader as `record` (case.json) describes it, at `pose` (null: where it
 // stopped).
-render::SnapshotInput snapshot_input(const engine::ParticleSet &p, const nlohmann::json &scene, const nlohmann::json &record,
+render::SnapshotInput snapshot_input(const engine::ParticleSet &p, const Scene &scene, const nlohmann::json &record,
                                      const nlohmann::json &pose) {
   render::SnapshotInput in;
   in.x = p.x;
@@ -131,8 +131,7 @@ render::SnapshotInput snapshot_input(const engine::ParticleSet &p, const nlohman
   in.speed.resize(p.size(), 0.0);
   if (p.vx.size() == p.size())
     for (std::size_t i = 0; i < p.size(); ++i) in.speed[i] = std::sqrt(p.vx[i] * p.vx[i] + p.vy[i] * p.vy[i] + p.vz[i] * p.vz[i]);
-  const auto &d = scene.at("domain");
-  in.domain.hi = {d.at("length").get<double>(), d.at("width").get<double>(), d.at("height").get<double>()};
+  in.domain.hi = {scene.domain.length, scene.domain.width, scene.domain.height};
   const auto &body = record.is_object() ? record.value("spreader", nlohmann::json()) : nlohmann::json();
   const auto &at = pose.is_object() ? pose : (record.is_object() ? record.value("spreader_end", nlohmann::json()) : nlohmann::json());
   if (!body.is_object() || !at.is_object() || !at.contains("reference")) return in;  // an older record: none drawn
@@ -148,13 +147,13 @@ render::SnapshotInput snapshot_input(const engine::ParticleSet &p, const nlohman
 
 }  // namespace
 
-void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const nlohmann::json &record, const fs::path &png,
+void snapshot(const engine::ParticleSet &p, const Scene &scene, const nlohmann::json &record, const fs::path &png,
               const std::string &title, const nlohmann::json &pose) {
   guarded(png, [&] { render::snapshot(snapshot_input(p, scene, record, pose), png, sized(1600, 900, title)); });
 }
 
 std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::vector<nlohmann::json> &poses,
-                   const nlohmann::json &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title) {
+                   const Scene &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title) {
   std::size_t written = 0;
   guarded(dir / "frame_0000.png", [&] {
     std::vector<render::SnapshotInput> in;

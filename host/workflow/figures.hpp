@@ -27,11 +27,11 @@ std::string case_title(const std::string &id, const nlohmann::json &inputs);
 // entry's pose instead (null: spreader_end). A record without them (written by an older version)
 // draws no spreader. `scene` is the case's resolved scene. Sizes and vector copies follow the
 // stage's style (figure_style.hpp).
-void snapshot(const engine::ParticleSet &p, const nlohmann::json &scene, const nlohmann::json &record, const fs::path &png,
+void snapshot(const engine::ParticleSet &p, const Scene &scene, const nlohmann::json &record, const fs::path &png,
               const std::string &title, const nlohmann::json &pose = nullptr);
 // Numbered frames dir/frame_0000.png ... of a snapshot series, one colour scale for all; returns how many.
 std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::vector<nlohmann::json> &poses,
-                   const nlohmann::json &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title);
+                   const Scene &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title);
 void heightmap(const LayerResult &layer, const fs::path &png, const std::string &title);
 // Predicted against simulated V_s and R_q, training and test rows.
 void parity(const analysis::Report &report, const std::vector<std::string> &outputs, const fs::path &png);

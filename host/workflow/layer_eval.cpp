@@ -87,10 +87,9 @@ Region parse_region(const std::string &text, const std::string &what) {
 // Default sampling region. Full-width scenes: the study's 50 mm x 50 mm square centred on the
 // substrate. Periodic strips: the whole width over the middle 40 % of the spreader's travel, clear
 // of the heap at the start and of the spreader's wake at the end.
-Region default_region(const nlohmann::json &scene, const sm_spreader_description_v2 &spreader) {
-  const auto &d = scene["domain"];
-  const double length = d["length"], width = d["width"];
-  if (!d["periodic_y"].get<bool>()) {
+Region default_region(const Scene &scene, const sm_spreader_description_v2 &spreader) {
+  const double length = scene.domain.length, width = scene.domain.width;
+  if (!scene.domain.periodic_y) {
     const double side = 0.05;
     return {length / 2 - side / 2, length / 2 + side / 2, width / 2 - side / 2, width / 2 + side / 2};
   }

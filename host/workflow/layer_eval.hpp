@@ -14,6 +14,7 @@
 
 #include "core/registry.hpp"
 #include "engine/particle_set.hpp"
+#include "workflow/scene_model.hpp"
 
 namespace spreadmap {
 
@@ -51,7 +52,7 @@ Region parse_region(const std::string &text, const std::string &what);
 // The sampling region of a scene when the workflow sets none: the study's 50 mm x 50 mm square
 // centred on the substrate for full-width scenes; for periodic strips the whole width over the
 // middle 40 % of the spreader's travel.
-Region default_region(const nlohmann::json &scene, const sm_spreader_description_v2 &spreader);
+Region default_region(const Scene &scene, const sm_spreader_description_v2 &spreader);
 
 // What the layer's metrics take from the spreader that spread it: its speed U (V_s = mean height x
 // U) and its gap.

@@ -16,9 +16,9 @@ namespace spreadmap {
 LocalExecutor::LocalExecutor(int jobs, int threads_per_case, RunJob run)
     : jobs_(std::max(1, jobs)), threads_per_case_(threads_per_case), run_(std::move(run)) {}
 
-int LocalExecutor::threads_for(const nlohmann::json &scene, int running) const {
+int LocalExecutor::threads_for(const Scene &scene, int running) const {
   if (threads_per_case_ > 0) return threads_per_case_;
-  if (scene.value("threads", 0) > 0) return scene.value("threads", 0);
+  if (scene.threads > 0) return static_cast<int>(scene.threads);
   const int cores = std::max(1u, std::thread::hardware_concurrency());
   return std::max(1, cores / std::max(1, running));
 }

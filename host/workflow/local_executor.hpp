@@ -21,7 +21,7 @@ class LocalExecutor : public CaseExecutor {
   void run_cases(CaseBatch &batch, StageContext &ctx) override;
 
   // The threads rule above, for `running` cases at once.
-  int threads_for(const nlohmann::json &scene, int running) const;
+  int threads_for(const Scene &scene, int running) const;
 
  private:
   int jobs_;

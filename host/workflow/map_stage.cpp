@@ -17,7 +17,7 @@ namespace {
 
 class MapStage : public Stage {
  public:
-  void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &, PluginRegistry &registry,
+  void validate(const Workflow &wf, const StageEntry &entry, const Scene *, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     const YAML::Node &cfg = entry.config;

@@ -32,7 +32,7 @@ Validated validate_workflow(const fs::path &file, PluginRegistry &registry) {
   if (needs_scene(v.wf) || v.wf.root["scene"]) v.scene = resolve_scene(v.wf, registry, diag);
   for (const auto &entry : v.wf.stages) {
     auto stage = make_stage(entry.kind);
-    stage->validate(v.wf, entry, v.scene, registry, diag);
+    stage->validate(v.wf, entry, v.scene ? &*v.scene : nullptr, registry, diag);
     v.stages.push_back(std::move(stage));
   }
   diag.throw_if_any();
@@ -54,10 +54,11 @@ int run_workflow(const fs::path &file, const RunOptions &given, PluginRegistry &
   RunDirectory run(options.out.empty() ? fs::path("runs") / v.wf.name : options.out);
   if (options.records_manifest()) run.update_manifest([&](nlohmann::json &m) {
     m["workflow"] = {{"file", fs::absolute(file).string()}, {"name", v.wf.name}};
-    m["scene"] = v.scene;
+    m["scene"] = v.scene ? to_json(*v.scene) : nlohmann::json();
   });
   spdlog::info("run directory: {}", run.root().string());
-  StageContext ctx{v.wf, v.scene, run, registry, options};
+  const Scene none;  // a workflow without a scene has no stage that reads one
+  StageContext ctx{v.wf, v.scene ? *v.scene : none, run, registry, options};
   for (std::size_t i = 0; i < v.stages.size(); ++i) {
     const std::string kind = v.wf.stages[i].kind;
     bool selected = options.only.empty();

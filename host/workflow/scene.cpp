@@ -182,7 +182,7 @@ const char *preset_text(const std::string &preset) {
   return presets::quick;
 }
 
-nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagnostics &diag) {
+std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagnostics &diag) {
   const std::string &file = wf.scene_file;
   const YAML::Node &user = wf.scene;
   nlohmann::json scene = nlohmann::json::object();
@@ -257,12 +257,16 @@ nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagn
   }
   check_consistency(scene, user, file, diag);
   if (diag.empty() && law && geo) probe_plugins(scene, *law, *geo, user, file, diag);
-  return scene;
+  try {
+    return scene_from_json(scene, file);
+  } catch (const InputError &) {
+    if (diag.empty()) throw;  // a valid scene always types: this would be a bug here, not the user's
+    return std::nullopt;      // its problems are reported already
+  }
 }
 
-bool find_scene_key(const nlohmann::json &scene, PluginRegistry &registry, const std::string &name, SceneKey &out,
+bool find_scene_key(const Scene &scene, PluginRegistry &registry, const std::string &name, SceneKey &out,
                     std::string &why) {
-  using ptr = nlohmann::json::json_pointer;
   std::string section, key;
   static const std::map<std::string, std::pair<std::string, std::string>> aliases = {
       {"U", {"spreader", "U"}}, {"omega", {"spreader", "omega"}}, {"gap", {"spreader", "gap"}},
@@ -273,35 +277,25 @@ bool find_scene_key(const nlohmann::json &scene, PluginRegistry &registry, const
   } else if (auto dot = name.find('.'); dot != std::string::npos) {
     section = name.substr(0, dot);
     key = name.substr(dot + 1);
+  } else if (const sm_param_v1 *p = SchemaView{engine_params, std::size(engine_params)}.find(name)) {
+    out = {name, "", name, false, p};
+    return true;
   } else {
     why = "unknown design variable '" + name + "': write U, omega, gap, seed or a dotted scene key such as contact.friction";
     return false;
   }
-  out.name = name;
+  out = {name, section, key, false, nullptr};
   for (const auto &s : host_sections)
     if (section == s.name) {
-      if (const sm_param_v1 *p = SchemaView{s.params, s.n}.find(key)) {
-        out.path = ptr("/" + section + "/" + key);
-        out.param = p;
-        return true;
-      }
+      if ((out.param = SchemaView{s.params, s.n}.find(key))) return true;
       why = "scene." + section + " has no key '" + key + "'";
       return false;
     }
-  if ((section == "contact" || section == "spreader" || section == "substrate") && scene.contains(section)) {
-    if (section == "spreader") {
-      const auto &geo = registry.get("spreader", scene["spreader"]["use"].get<std::string>());
-      if (const sm_param_v1 *p = SchemaView::of(*geo.descriptor).find(key)) {
-        out.path = ptr("/spreader/params/" + key);
-        out.param = p;
-        return true;
-      }
-    }
-    const auto &law = registry.get("contact", scene["contact"]["use"].get<std::string>());
-    if (const sm_param_v1 *p = SchemaView::of(*law.descriptor).find(key)) {
-      out.path = ptr(section == "contact" ? "/contact/params/" + key
-                                          : section == "substrate" ? "/substrate/law/" + key : "/spreader/law/" + key);
-      out.param = p;
+  if (section == "contact" || section == "spreader" || section == "substrate") {
+    if (section == "spreader" && (out.param = SchemaView::of(*registry.get("spreader", scene.spreader.use).descriptor).find(key)))
+      return true;
+    if ((out.param = SchemaView::of(*registry.get("contact", scene.contact.use).descriptor).find(key))) {
+      out.spreader_law = section == "spreader";
       return true;
     }
     why = "scene." + section + " has no key '" + key + "'";

@@ -12,27 +12,24 @@
 //   substrate{law{...}}                          the same law with the substrate's overrides
 //   spreader {use, params{...}, law{...}}        geometry and the particle-spreader law
 #pragma once
-#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "core/diagnostics.hpp"
 #include "core/registry.hpp"
+#include "workflow/scene_key.hpp"
+#include "workflow/scene_model.hpp"
 #include "workflow/workflow.hpp"
 
 namespace spreadmap {
 
-// Validates and resolves the workflow's scene; problems go to diag.
-nlohmann::json resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagnostics &diag);
+// Validates and resolves the workflow's scene; problems go to diag. Empty only when the problems
+// leave no scene to type (the stages then skip their checks that need one).
+std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagnostics &diag);
 
-// A design variable: the short name users write (U, omega, gap, seed) or a dotted path
-// (contact.friction, powder.count, spreader.diameter), and where it lives in the resolved scene.
-struct SceneKey {
-  std::string name;                  // as written
-  nlohmann::json::json_pointer path; // into the resolved scene
-  const sm_param_v1 *param = nullptr;// schema entry (units, range)
-};
-// Resolves a variable name against a resolved scene; records an error when unknown.
-bool find_scene_key(const nlohmann::json &scene, PluginRegistry &registry, const std::string &name, SceneKey &out,
+// Resolves a design variable's name (U, omega, gap, seed, precision, or section.key) against a
+// resolved scene; false, with the reason in `why`, when the scene has no such key.
+bool find_scene_key(const Scene &scene, PluginRegistry &registry, const std::string &name, SceneKey &out,
                     std::string &why);
 
 const char *preset_text(const std::string &preset);  // the preset's YAML (documentation and tests)

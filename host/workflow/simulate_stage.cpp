@@ -20,7 +20,7 @@ namespace {
 
 class SimulateStage : public Stage {
  public:
-  void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &scene, PluginRegistry &registry,
+  void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     for (const auto &kv : entry.config) {
@@ -32,8 +32,8 @@ class SimulateStage : public Stage {
       if (key != "design" && key != "render")
         diag.error(Location::of(file, kv.first), "simulate." + key, "unknown key", "known: design, render");
     }
-    if (scene.is_null() || !scene.contains("spreader")) return;  // scene errors already reported
-    design_ = parse_design(entry.config["design"], file, "simulate.design", scene, registry, diag);
+    if (!scene) return;  // scene errors already reported
+    design_ = parse_design(entry.config["design"], file, "simulate.design", *scene, registry, diag);
   }
 
   void run(StageContext &ctx) override {
@@ -61,7 +61,7 @@ class SimulateStage : public Stage {
         std::error_code ec;
         fs::remove(req.dir / "checkpoint.bin", ec);
       }
-      write_atomic(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry).dump(2) + "\n");  // as the engine runs it
+      write_scene_file(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry));  // as the engine runs it
       batch.jobs.push_back({i, std::move(req), render_});
     }
     if (ctx.options.records_manifest()) ctx.run.update_manifest([&](nlohmann::json &m) {
@@ -82,10 +82,9 @@ class SimulateStage : public Stage {
                         for (const auto &d : design_.variables) v.push_back({{"name", d.key.name}, {"unit", d.key.param->unit}});
                         return v;
                       }()}};
-      m["plugins"]["contact/" + ctx.scene["contact"]["use"].get<std::string>()] =
-          ctx.registry.get("contact", ctx.scene["contact"]["use"]).descriptor->version;
-      m["plugins"]["spreader/" + ctx.scene["spreader"]["use"].get<std::string>()] =
-          ctx.registry.get("spreader", ctx.scene["spreader"]["use"]).descriptor->version;
+      m["plugins"]["contact/" + ctx.scene.contact.use] = ctx.registry.get("contact", ctx.scene.contact.use).descriptor->version;
+      m["plugins"]["spreader/" + ctx.scene.spreader.use] =
+          ctx.registry.get("spreader", ctx.scene.spreader.use).descriptor->version;
     });
     if (only_case)
       spdlog::info("simulate: case {} of {}: {}", RunDirectory::case_id(*only_case), n,
@@ -93,7 +92,7 @@ class SimulateStage : public Stage {
     else
       spdlog::info("simulate: {} cases, {} to run, {} finished already", n, batch.jobs.size(), n - batch.jobs.size());
     std::string backend_note;  // throws InputError for `cuda` with no usable device, before any case runs
-    cuda::choose_backend(ctx.scene["backend"].get<std::string>(), backend_note);
+    cuda::choose_backend(ctx.scene.backend, backend_note);
     ctx.options.executor->run_cases(batch, ctx);
   }
 

@@ -11,6 +11,7 @@
 #include "core/diagnostics.hpp"
 #include "core/registry.hpp"
 #include "workflow/run_dir.hpp"
+#include "workflow/scene_model.hpp"
 #include "workflow/workflow.hpp"
 
 namespace spreadmap {
@@ -35,7 +36,7 @@ struct RunOptions {
 
 struct StageContext {
   const Workflow &wf;
-  const nlohmann::json &scene;  // resolved (SI)
+  const Scene &scene;  // resolved (SI)
   RunDirectory &run;
   PluginRegistry &registry;
   const RunOptions &options;
@@ -44,8 +45,9 @@ struct StageContext {
 class Stage {
  public:
   virtual ~Stage() = default;
-  virtual void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &scene,
-                        PluginRegistry &registry, Diagnostics &diag) = 0;
+  // `scene`: null when the workflow has none or its problems left none to check against.
+  virtual void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
+                        Diagnostics &diag) = 0;
   virtual void run(StageContext &ctx) = 0;
 };
 
@@ -60,7 +62,7 @@ std::unique_ptr<Stage> make_stage(const std::string &kind);
 // stages in order. validate_only stops after validation.
 struct Validated {
   Workflow wf;
-  nlohmann::json scene;
+  std::optional<Scene> scene;
   std::vector<std::unique_ptr<Stage>> stages;
 };
 Validated validate_workflow(const fs::path &file, PluginRegistry &registry);

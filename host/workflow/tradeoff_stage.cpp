@@ -32,8 +32,8 @@ namespace spreadmap {
 namespace {
 
 struct Override {
-  std::vector<nlohmann::json::json_pointer> paths;
-  nlohmann::json value;
+  SceneKey key;
+  nlohmann::json value;  // SI
 };
 
 struct Fidelity {
@@ -47,7 +47,7 @@ const auto stats = analysis::mean_sd;
 
 class TradeoffStage : public Stage {
  public:
-  void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &scene, PluginRegistry &registry,
+  void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     const YAML::Node &cfg = entry.config;
@@ -74,7 +74,7 @@ class TradeoffStage : public Stage {
                  "e.g. - {name: reference, time.safety: 0.2} and - {name: default}");
       return;
     }
-    if (scene.is_null() || !scene.contains("contact")) return;
+    if (!scene) return;
     std::set<std::string> names;
     for (std::size_t i = 0; i < list.size(); ++i) {
       const YAML::Node f = list[i];
@@ -88,27 +88,18 @@ class TradeoffStage : public Stage {
         if (key == "name") continue;
         fid.description[key] = kv.second.as<std::string>();
         Override o;
+        std::string why;
+        if (!find_scene_key(*scene, registry, key, o.key, why)) {
+          diag.error(Location::of(file, kv.first), where + "." + key, why);
+          continue;
+        }
         if (key == "precision") {
           const std::string v = kv.second.as<std::string>();
           if (v != "double" && v != "float")
             diag.error(Location::of(file, kv.second), where + ".precision", "'" + v + "' is not double or float");
-          o.paths.emplace_back("/precision");
           o.value = v;
-          fid.overrides.push_back(o);
-          continue;
-        }
-        SceneKey k;
-        std::string why;
-        if (!find_scene_key(scene, registry, key, k, why)) {
-          diag.error(Location::of(file, kv.first), where + "." + key, why);
-          continue;
-        }
-        o.value = validate_value(*k.param, kv.second, file, where + "." + key, diag);
-        o.paths.push_back(k.path);
-        if (key.rfind("contact.", 0) == 0) {
-          const std::string law_key = key.substr(8);
-          o.paths.emplace_back("/substrate/law/" + law_key);
-          o.paths.emplace_back("/spreader/law/" + law_key);
+        } else {
+          o.value = validate_value(*o.key.param, kv.second, file, where + "." + key, diag);
         }
         fid.overrides.push_back(o);
       }
@@ -127,10 +118,8 @@ class TradeoffStage : public Stage {
         CaseRequest req;
         req.id = fmt::format("tradeoff_{}_heap{}", fidelities_[f].name, h);
         req.scene = ctx.scene;
-        for (const auto &o : fidelities_[f].overrides)
-          for (const auto &p : o.paths)
-            if (req.scene.contains(p.parent_pointer())) req.scene[p] = o.value;
-        req.scene["powder"]["seed"] = h;
+        for (const auto &o : fidelities_[f].overrides) apply_scene_value(req.scene, o.key, o.value);
+        req.scene.powder.seed = h;
         req.inputs = {{"fidelity", fidelities_[f].name}, {"seed", h}};
         req.dir = ctx.run.case_dir(req.id);
         req.heaps = ctx.run.heaps();

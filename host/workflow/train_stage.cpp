@@ -15,7 +15,7 @@ namespace {
 
 class TrainStage : public Stage {
  public:
-  void validate(const Workflow &wf, const StageEntry &entry, const nlohmann::json &, PluginRegistry &registry,
+  void validate(const Workflow &wf, const StageEntry &entry, const Scene *, PluginRegistry &registry,
                 Diagnostics &diag) override {
     config_ = read_train_config(wf, entry, registry, diag);
   }

@@ -21,26 +21,27 @@ namespace fs = std::filesystem;
 namespace {
 
 
-nlohmann::json small_scene(const std::string &precision) {
+sm::Scene small_scene(const std::string &precision) {
   sm::Diagnostics diag;
-  nlohmann::json scene =
+  const auto resolved =
       sm::resolve_scene(sm::load_workflow(fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml"), registry(), diag);
   diag.throw_if_any();
-  scene["powder"]["count"] = 400;
-  scene["powder"]["heap_to"] = 0.009;
-  scene["powder"]["settle_time"] = 0.02;
-  scene["spreader"]["params"]["U"] = 0.1;
-  scene["precision"] = precision;
+  sm::Scene scene = *resolved;
+  scene.powder.count = 400;
+  scene.powder.heap_to = 0.009;
+  scene.powder.settle_time = 0.02;
+  scene.spreader.params["U"] = 0.1;
+  scene.precision = precision == "float" ? sm::Precision::float32 : sm::Precision::float64;
   return scene;
 }
 
 template <class Real> void backends_agree(const std::string &precision) {
-  nlohmann::json scene = small_scene(precision);
-  scene["backend"] = "cpu";
+  sm::Scene scene = small_scene(precision);
+  scene.backend = "cpu";
   const auto heap = sm::settle_heap<Real>(scene, registry(), "gpu test", "scene.json");
   auto run = [&](const std::string &backend, std::uint64_t steps) {
-    nlohmann::json s = scene;
-    s["backend"] = backend;
+    sm::Scene s = scene;
+    s.backend = backend;
     auto r = sm::make_spreading_run<Real>(s, registry(), heap, "scene.json");
     r->sim.run_steps(steps);
     return r;
@@ -60,8 +61,8 @@ template <class Real> void backends_agree(const std::string &precision) {
   const fs::path path = fs::temp_directory_path() / ("gpu_resume_" + std::to_string(::getpid()) + ".bin");
   auto half = run("cuda", 1500);
   half->sim.save_checkpoint(path);
-  nlohmann::json s = scene;
-  s["backend"] = "cuda";
+  sm::Scene s = scene;
+  s.backend = "cuda";
   auto resumed = sm::make_spreading_run<Real>(s, registry(), heap, "scene.json");
   resumed->sim.load_checkpoint(path);
   resumed->sim.run_steps(1500);

@@ -15,6 +15,7 @@
 #include "cuda/backend.hpp"
 #include "cuda/plugin_kernels.hpp"
 #include "gpu/plugin_params.hpp"
+#include "unit/built_plugins.hpp"
 #include "verification/contact_laws.hpp"
 
 namespace sm = spreadmap;
@@ -22,10 +23,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-sm::PluginRegistry &registry() {
-  static sm::PluginRegistry r({fs::path(SPREADMAP_BINARY_DIR) / "lib" / "spreadmap" / "plugins"});
-  return r;
-}
+sm::PluginRegistry &registry() { return built_plugins(); }
 
 // The C symbols a module exports (nm -D --defined-only), sorted, one per line. C++ symbols (_Z...) are
 // left out: libstdc++'s unique template statics are exported by every module, CUDA or not.

@@ -1,2 +1,4 @@
-# host/workflow: the local executor's pool of case threads, with stand-ins for the cases.
+# host/workflow: the local executor's pool of case threads, with stand-ins for the cases; the typed
+# scene and the function that sets design variables on it.
 spreadmap_test(unit workflow SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_local_executor_test.cpp LIBS spreadmap_workflow)
+spreadmap_test(unit scene_model SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_scene_model_test.cpp LIBS spreadmap_workflow)

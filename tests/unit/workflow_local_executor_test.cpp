@@ -38,7 +38,6 @@ struct PoolRun {
       sm::CaseJob job;
       job.index = i;
       job.request.id = sm::RunDirectory::case_id(i);
-      job.request.scene = nlohmann::json::object();
       batch.jobs.push_back(job);
     }
   }
@@ -48,7 +47,7 @@ struct PoolRun {
   fs::path dir;
   sm::RunDirectory run;
   sm::Workflow wf;
-  nlohmann::json scene = nlohmann::json::object();
+  sm::Scene scene;
   sm::PluginRegistry registry{std::vector<fs::path>{}};
   sm::RunOptions options;
   sm::StageContext ctx{wf, scene, run, registry, options};
@@ -137,11 +136,13 @@ TEST(LocalExecutor, EveryJobRunsExactlyOnceOnAPoolOfJobsThreads) {
 }
 
 TEST(LocalExecutor, ThreadsPerCaseComeFromTheOptionThenTheSceneThenTheCoresShare) {
-  EXPECT_EQ(sm::LocalExecutor(4, 7).threads_for({{"threads", 5}}, 4), 7);
-  EXPECT_EQ(sm::LocalExecutor(4).threads_for({{"threads", 5}}, 4), 5);
+  sm::Scene five, all;
+  five.threads = 5;
+  EXPECT_EQ(sm::LocalExecutor(4, 7).threads_for(five, 4), 7);
+  EXPECT_EQ(sm::LocalExecutor(4).threads_for(five, 4), 5);
   const int cores = int(std::thread::hardware_concurrency());
-  EXPECT_EQ(sm::LocalExecutor(4).threads_for({{"threads", 0}}, 2), std::max(1, cores / 2));
-  EXPECT_EQ(sm::LocalExecutor(4).threads_for(nlohmann::json::object(), 4 * cores), 1);
+  EXPECT_EQ(sm::LocalExecutor(4).threads_for(all, 2), std::max(1, cores / 2));
+  EXPECT_EQ(sm::LocalExecutor(4).threads_for(all, 4 * cores), 1);
 }
 
 TEST(LocalExecutor, AFailureIsThrownOnceTheRunningCaseFinishedAndWasRecorded) {
