@@ -277,8 +277,8 @@ bool find_scene_key(const Scene &scene, PluginRegistry &registry, const std::str
   } else if (auto dot = name.find('.'); dot != std::string::npos) {
     section = name.substr(0, dot);
     key = name.substr(dot + 1);
-  } else if (const sm_param_v1 *p = SchemaView{engine_params, std::size(engine_params)}.find(name)) {
-    out = {name, "", name, false, p};
+  } else if (name == "precision" || name == "gravity") {  // the top-level keys that change a case's result
+    out = {name, "", name, false, SchemaView{engine_params, std::size(engine_params)}.find(name)};
     return true;
   } else {
     why = "unknown design variable '" + name + "': write U, omega, gap, seed or a dotted scene key such as contact.friction";

@@ -134,3 +134,12 @@ TEST(SceneModel, ASceneKeyTheSceneLacksIsRefused) {
   EXPECT_THROW(sm::set_host_key(s, "powder", "colour", 1), sm::InputError);
   EXPECT_THROW(sm::set_host_key(s, "domain", "length", "long"), sm::InputError);
 }
+
+TEST(SceneModel, OnlyTopLevelKeysThatChangeTheResultAreDesignVariables) {
+  const sm::Scene s = preset_scene("quick");
+  sm::SceneKey key;
+  std::string why;
+  EXPECT_TRUE(sm::find_scene_key(s, built_plugins(), "gravity", key, why));
+  EXPECT_FALSE(sm::find_scene_key(s, built_plugins(), "threads", key, why));  // the same case, only faster
+  EXPECT_FALSE(sm::find_scene_key(s, built_plugins(), "preset", key, why));   // applied while resolving
+}
