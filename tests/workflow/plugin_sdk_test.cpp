@@ -1,5 +1,5 @@
-// The out-of-tree plugin: `cmake --install` of this build into a fresh prefix, then the sample in
-// tests/plugin_sdk/ configured with find_package(spreadmap) against that prefix only, built, and
+// The out-of-tree plugins (a contact law and a spreader): `cmake --install` of this build into a
+// fresh prefix, then the samples in tests/plugin_sdk/ configured with find_package(spreadmap) against that prefix only, built, and
 // loaded by the installed binary through SPREADMAP_PLUGIN_PATH, which must list its schema. The
 // installed binary must also find the installed in-tree plugins without any variable. The plugin
 // compiles with the project's warnings (-Wall -Wextra, from the installed SpreadmapWarnings.cmake)
@@ -86,5 +86,25 @@ TEST(OutOfTreePlugin, BuildsAgainstTheInstalledSdkAndLoads) {
   }
   const auto validate = t::run({{"validate", wf.string()}, installed, env, {}});
   EXPECT_EQ(validate.exit_code, 0) << validate.describe();
+
+  // the out-of-tree spreader: listed, and a scene runs with it, the host knowing it only by what it
+  // says of itself. It travels 4 mm from x = 6 mm and stops there; nothing is lost on the way.
+  ASSERT_TRUE(fs::exists(plugins / "spreader" / "scraper.so"));
+  const auto scraper = t::run({{"plugins", "scraper"}, installed, env, {}});
+  ASSERT_EQ(scraper.exit_code, 0) << scraper.describe();
+  EXPECT_TRUE(contains(scraper.out, "spreader/scraper 0.1.0")) << scraper.out;
+  const fs::path scraped = work / "scraped.yaml";
+  {
+    std::ofstream(scraped) << "version: 1\nname: scraped\nscene:\n  preset: quick\n  powder: {count: 300}\n"
+                              "  spreader: {use: scraper, thickness: 1 mm, height: 8 mm, gap: 0.4 mm, travel: 4 mm}\n"
+                              "stages:\n  - simulate: {render: false}\n";
+  }
+  const auto run = t::run({{"run", scraped.string(), "--out", (work / "out").string()}, installed, env, {}});
+  ASSERT_EQ(run.exit_code, 0) << run.describe();
+  const auto record = nlohmann::json::parse(std::ifstream(work / "out" / "cases" / "c000" / "case.json"));
+  EXPECT_NEAR(record["spreader_end"]["reference"][0].get<double>(), 10e-3, 1e-12) << record.dump();
+  EXPECT_NEAR(record["spreader"]["gap"].get<double>(), 0.4e-3, 1e-15);
+  EXPECT_EQ(record["spreader"]["outline_x"].size(), 4u);
+  EXPECT_EQ(record["particles_end"].get<int>() + record["removed"].get<int>(), record["particles_start"].get<int>());
   fs::remove_all(work);
 }
