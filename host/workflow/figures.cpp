@@ -35,11 +35,11 @@ static void unavailable() {
   static std::once_flag once;
   std::call_once(once, [] { spdlog::warn("figures: this build has no VTK (SPREADMAP_ENABLE_VTK=OFF); no PNG is written"); });
 }
-void snapshot(const engine::ParticleSet &, const nlohmann::json &, const nlohmann::json &, const fs::path &,
-              const std::string &, const nlohmann::json &) {
+void snapshot(const engine::ParticleSet &, const Scene &, const nlohmann::json &, const fs::path &, const std::string &,
+              const nlohmann::json &) {
   unavailable();
 }
-std::size_t frames(const std::vector<engine::ParticleSet> &, const std::vector<nlohmann::json> &, const nlohmann::json &,
+std::size_t frames(const std::vector<engine::ParticleSet> &, const std::vector<nlohmann::json> &, const Scene &,
                    const nlohmann::json &, const fs::path &, const std::string &) {
   unavailable();
   return 0;
