@@ -65,7 +65,7 @@ typedef struct sm_plugin_v1 {
    * err on failure (cross-parameter constraints). The instance is freed by destroy(). */
   void *(*create)(const char *params_json, sm_error *err);
   void (*destroy)(void *self);
-  const void *ops;              /* the kind's table: sm_contact_ops_v1, sm_geometry_ops_v1, ... */
+  const void *ops;              /* the kind's table: sm_contact_ops_v1, sm_spreader_ops_v2, ... */
 } sm_plugin_v1;
 
 typedef const sm_plugin_v1 *(*sm_plugin_entry_v1)(void);
