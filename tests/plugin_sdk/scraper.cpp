@@ -8,8 +8,6 @@
 #include <spreadmap/spreader/outline.hpp>
 #include <spreadmap/spreader/travel.hpp>
 
-#include <cmath>
-
 namespace sp = spreadmap::spreader;
 
 struct Scraper {
@@ -34,18 +32,8 @@ struct Scraper {
 
   template <class Real>
   SM_HD bool operator()(const spreadmap::Vec3<Real> &p, Real r, Real t, spreadmap::WallHit<Real> &hit) const {
-    // signed distance to the rectangle about its centre: the larger of the two face distances
-    // inside; the distance to the nearest face, edge or corner outside
     const Real u = p.x - travel.x(t), w = p.z - Real(gap + half_height);
-    const Real qx = std::abs(u) - Real(half_thickness), qz = std::abs(w) - Real(half_height);
-    const Real su = u < Real(0) ? Real(-1) : Real(1), sw = w < Real(0) ? Real(-1) : Real(1);
-    sp::ProfileDistance<Real> d{};
-    if (qx > Real(0) && qz > Real(0)) {
-      const Real q = std::sqrt(qx * qx + qz * qz);
-      d = {q, su * qx / q, sw * qz / q};
-    } else {
-      d = qx >= qz ? sp::ProfileDistance<Real>{qx, su, Real(0)} : sp::ProfileDistance<Real>{qz, Real(0), sw};
-    }
+    const auto d = sp::rounded_rectangle_distance(u, w, Real(half_thickness), Real(half_height), Real(0));
     spreadmap::Vec3<Real> n{};
     const Real dist = sp::extruded_distance(d, p.y - Real(y_centre), Real(0.5 * length), n);
     if (!(r - dist > Real(0))) return false;

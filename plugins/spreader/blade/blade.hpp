@@ -18,23 +18,6 @@
 
 namespace spreadmap::spreader {
 
-// Signed distance and outward normal of a rectangle with rounded lower corners, in coordinates
-// relative to its centre (u along x, w along z). Half sizes hx, hz; lower corner radius rho
-// (<= min(hx, hz)).
-template <class Real>
-SM_HD ProfileDistance<Real> rounded_rectangle_distance(Real u, Real w, Real hx, Real hz, Real rho) {
-  const Real su = u < Real(0) ? Real(-1) : Real(1), sw = w < Real(0) ? Real(-1) : Real(1);
-  const Real corner = w < Real(0) ? rho : Real(0);
-  // Fold into the first quadrant; (qx, qz) is the offset from the rectangle shrunk by `corner`.
-  const Real qx = su * u - (hx - corner), qz = sw * w - (hz - corner);
-  if (qx > Real(0) && qz > Real(0)) {  // facing a corner: nearest point on its arc
-    const Real q = std::sqrt(qx * qx + qz * qz);
-    return {q - corner, su * qx / q, sw * qz / q};
-  }
-  if (qx >= qz) return {qx - corner, su, Real(0)};  // nearest point on a vertical face
-  return {qz - corner, Real(0), sw};                // nearest point on the top or bottom face
-}
-
 struct Blade {
   static constexpr sm_param_v1 params[] = {
       number("thickness", "m", 1e-6, 0.1, 1e-3, "t: blade thickness along x"),
