@@ -35,7 +35,6 @@ namespace {
 
 constexpr double radius = 125e-6, density = 4430, box = 5e-3, dt = 7.5e-7;
 
-
 #if __has_include(<plugins/contact/hooke_slider/hooke_slider.hpp>)
 using Law = sm::HookeSlider;
 Law make_law(double friction) {
@@ -79,7 +78,9 @@ ParticleSet initial_packing(std::size_t n) {
     s.y.push_back((iy + 0.5) * pitch + 0.02 * radius * u(rng));
     s.z.push_back(radius * 1.05 + iz * pitch + 0.02 * radius * u(rng));
     s.radius.push_back(radius);
-    s.vx.push_back(0.05 * u(rng)); s.vy.push_back(0.05 * u(rng)); s.vz.push_back(0.05 * u(rng));
+    s.vx.push_back(0.05 * u(rng));
+    s.vy.push_back(0.05 * u(rng));
+    s.vz.push_back(0.05 * u(rng));
   }
   return s;
 }
@@ -93,7 +94,8 @@ struct Scene {
     s.dt = dt;
     s.log = [](const std::string &) {};
     auto sim = std::make_unique<Simulation<Real>>(domain, ContactLaw{&sm::detail::ContactOps<Law>::table, &pair}, s);
-    sim->add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, {&sm::detail::ContactOps<Law>::table, &floor}, true, "floor"});
+    sim->add_plane_wall(
+        {{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, {&sm::detail::ContactOps<Law>::table, &floor}, true, "floor"});
     sim->add_particles(particles, density);
     return sim;
   }
@@ -118,12 +120,12 @@ void measure(Scene &scene, const ParticleSet &settled, int threads, std::uint64_
   shake(*sim, steps);
   const RunCounters &after = sim->counters();
   const double ps = (after.particle_steps - before.particle_steps) / (after.wall_seconds - before.wall_seconds);
-  std::printf("%-7s %d thread%s  %10.3g particle-steps/s  (%.0f ns per particle-step; %zu particles, %.2f neighbours "
-              "per particle (full list), %llu list builds in %llu steps)\n",
-              name, threads, threads > 1 ? "s" : " ", ps, 1e9 / ps, sim->size(),
-              double(sim->list_entries()) / double(sim->size()),
-              static_cast<unsigned long long>(after.list_builds - before.list_builds),
-              static_cast<unsigned long long>(steps));
+  std::printf(
+      "%-7s %d thread%s  %10.3g particle-steps/s  (%.0f ns per particle-step; %zu particles, %.2f neighbours "
+      "per particle (full list), %llu list builds in %llu steps)\n",
+      name, threads, threads > 1 ? "s" : " ", ps, 1e9 / ps, sim->size(),
+      double(sim->list_entries()) / double(sim->size()),
+      static_cast<unsigned long long>(after.list_builds - before.list_builds), static_cast<unsigned long long>(steps));
 }
 
 }  // namespace

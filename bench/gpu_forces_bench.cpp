@@ -44,12 +44,16 @@ Scene load_scene(double gap, double start) {
   auto &registry = sm::PluginRegistry::global();
   const auto &contact = registry.get("contact", "hooke_slider");
   const auto &roller = registry.get("spreader", "roller");
-  Scene s{sm::PluginInstance(contact, sm::test::plugin_params(contact.descriptor, {{"slider", "viscous"}, {"friction", 0.185}})),
+  Scene s{sm::PluginInstance(contact,
+                             sm::test::plugin_params(contact.descriptor, {{"slider", "viscous"}, {"friction", 0.185}})),
           sm::PluginInstance(contact, sm::test::plugin_params(contact.descriptor, {{"friction", 0.12}})),
-          sm::PluginInstance(roller, sm::test::plugin_params(roller.descriptor, {{"diameter", 10e-3}, {"gap", gap},
-                                                                                 {"start", start}, {"U", 0.1},
-                                                                                 {"omega", -20.0}})),
-          sm::cuda::contact_kernels(contact), sm::cuda::contact_kernels(contact), sm::cuda::spreader_kernels(roller)};
+          sm::PluginInstance(roller,
+                             sm::test::plugin_params(
+                                 roller.descriptor,
+                                 {{"diameter", 10e-3}, {"gap", gap}, {"start", start}, {"U", 0.1}, {"omega", -20.0}})),
+          sm::cuda::contact_kernels(contact),
+          sm::cuda::contact_kernels(contact),
+          sm::cuda::spreader_kernels(roller)};
   return s;
 }
 

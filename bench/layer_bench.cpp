@@ -108,18 +108,20 @@ void run(const char *label, const Scene &s, int max_threads) {
     if (max_threads == 1) break;
   }
   const auto &m = result.metrics;
-  std::printf("  particles in region %llu, mean height %.1f um, rq %.1f um, solid %.1f um, coverage %.4f, "
-              "packing %.3f\n",
-              static_cast<unsigned long long>(m.particles_in_region), m.mean_height * 1e6, m.rq * 1e6,
-              m.solid_thickness * 1e6, m.coverage, m.packing_fraction);
+  std::printf(
+      "  particles in region %llu, mean height %.1f um, rq %.1f um, solid %.1f um, coverage %.4f, "
+      "packing %.3f\n",
+      static_cast<unsigned long long>(m.particles_in_region), m.mean_height * 1e6, m.rq * 1e6, m.solid_thickness * 1e6,
+      m.coverage, m.packing_fraction);
 }
 
 }  // namespace
 
 int main() {
-  std::printf("bench_layer: %zu spheres of %.0f um, region 50 mm x 50 mm, cell d/5; hardware threads %u, "
-              "OpenMP max threads %d\n",
-              count, d * 1e6, std::thread::hardware_concurrency(), omp_get_max_threads());
+  std::printf(
+      "bench_layer: %zu spheres of %.0f um, region 50 mm x 50 mm, cell d/5; hardware threads %u, "
+      "OpenMP max threads %d\n",
+      count, d * 1e6, std::thread::hardware_concurrency(), omp_get_max_threads());
   const int max_threads = omp_get_max_threads();
   double length = 0;
   const Scene layer = layer_scene(length);

@@ -2,7 +2,7 @@
 // (workflows/peer_liggghts.yaml, the scene of the peers' LIGGGHTS runs): 5000 spheres of 250 um settled on a
 // 2.5 mm periodic strip, a 10 mm roller at 100 mm/s (omega 0), hooke_slider with LIGGGHTS' viscous
 // slider, the substrate plane, dt = 7.5e-7 s, double precision. The Simulation, its walls and its
-// plugins are built by the same code as a case of the simulate stage (workflow/case_setup.hpp).
+// plugins are built by the same code as a case of the simulate stage (workflow/simulate/case_setup.hpp).
 //
 // It times `steps` spreading steps from the settled heap on each thread count, `repeats` times
 // (interleaved, so that a slow spell of the machine hits every thread count alike), and prints the
@@ -42,8 +42,8 @@
 #include "core/registry.hpp"
 #include <spreadmap/simd.hpp>
 #include "engine/vtp_io.hpp"
-#include "workflow/case_setup.hpp"
-#include "workflow/scene.hpp"
+#include "workflow/simulate/case_setup.hpp"
+#include "workflow/scene/scene_section.hpp"
 #include "workflow/workflow.hpp"
 
 namespace sm = spreadmap;
@@ -67,11 +67,12 @@ struct Options {
 };
 
 [[noreturn]] void usage(const char *why) {
-  std::fprintf(stderr,
-               "bench_peer_scene: %s\nusage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] "
-               "[--steps N] [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT] "
-               "[--backend cpu|cuda]\n",
-               why);
+  std::fprintf(
+      stderr,
+      "bench_peer_scene: %s\nusage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] "
+      "[--steps N] [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT] "
+      "[--backend cpu|cuda]\n",
+      why);
   std::exit(2);
 }
 
@@ -137,7 +138,7 @@ double median(std::vector<double> v) {
 
 struct Timing {
   double particle_steps_per_second;
-  double neighbours;        // full-list entries per particle at the end
+  double neighbours;  // full-list entries per particle at the end
   std::uint64_t list_builds, removed;
   std::size_t particles_end;
   std::vector<double> end_state;
@@ -166,7 +167,8 @@ int main(int argc, char **argv) {
     std::printf("heap: %zu spheres read from %s\n", heap.size(), opt.heap.c_str());
   } else {
     omp_set_num_threads(std::min(2, omp_get_num_procs()));
-    std::printf("heap: settling %s s of a new heap (seed 1) ...\n", nlohmann::json(scene.powder.settle_time).dump().c_str());
+    std::printf("heap: settling %s s of a new heap (seed 1) ...\n",
+                nlohmann::json(scene.powder.settle_time).dump().c_str());
     std::fflush(stdout);
     const auto t0 = std::chrono::steady_clock::now();
     heap = sm::settle_heap<double>(scene, registry, "bench", opt.workflow);
@@ -191,19 +193,20 @@ int main(int argc, char **argv) {
   }
 
   const double dt = scene.time.step;
-  std::printf("bench_peer_scene: the spreading scene of %s, double precision, dt = %.3g s, omega = %g rad/s, backend %s\n",
-              opt.workflow.filename().c_str(), dt, opt.omega, opt.backend.c_str());
+  std::printf(
+      "bench_peer_scene: the spreading scene of %s, double precision, dt = %.3g s, omega = %g rad/s, backend %s\n",
+      opt.workflow.filename().c_str(), dt, opt.omega, opt.backend.c_str());
   std::printf("machine: %s, %u hardware threads (OpenMP sees %d processors); load average at start %s\n",
               first_line_of("/proc/cpuinfo", "model name").c_str(), std::thread::hardware_concurrency(),
               omp_get_num_procs(), load_average().c_str());
   std::printf("instruction set of the engine's loops: %s (SPREADMAP_SIMD=base|avx2|avx512 chooses)\n",
               sm::simd_name(sm::simd_level()));
-  std::printf("timed: %llu spreading steps from t = %.4g s (roller x = %.2f mm), %d repeats per thread count, "
-              "interleaved\n",
-              static_cast<unsigned long long>(opt.steps), opt.skip * dt,
-              1e3 * (scene.spreader.params["start"].get<double>() +
-                     scene.spreader.params["U"].get<double>() * opt.skip * dt),
-              opt.repeats);
+  std::printf(
+      "timed: %llu spreading steps from t = %.4g s (roller x = %.2f mm), %d repeats per thread count, "
+      "interleaved\n",
+      static_cast<unsigned long long>(opt.steps), opt.skip * dt,
+      1e3 * (scene.spreader.params["start"].get<double>() + scene.spreader.params["U"].get<double>() * opt.skip * dt),
+      opt.repeats);
   std::fflush(stdout);
 
   std::vector<std::vector<Timing>> timings(opt.threads.size());
@@ -223,13 +226,17 @@ int main(int argc, char **argv) {
       const double particle_steps = after.particle_steps - before.particle_steps;
       Timing t{particle_steps / wall,
                double(sim.list_entries()) / double(std::max<std::size_t>(1, sim.size())),
-               after.list_builds - before.list_builds, sim.removed_count(), sim.size(), sim.state().kinematics_by_id()};
-      std::printf("  repeat %d, %d thread%s: %.3e particle-steps/s (%.1f ns per particle-step; CPU time of all "
-                  "threads %.1f ns), %llu list builds, %.2f neighbours per particle (full list), %zu particles at the "
-                  "end\n",
-                  r + 1, opt.threads[k], opt.threads[k] > 1 ? "s" : " ", t.particle_steps_per_second,
-                  1e9 / t.particle_steps_per_second, 1e9 * cpu / particle_steps,
-                  static_cast<unsigned long long>(t.list_builds), t.neighbours, t.particles_end);
+               after.list_builds - before.list_builds,
+               sim.removed_count(),
+               sim.size(),
+               sim.state().kinematics_by_id()};
+      std::printf(
+          "  repeat %d, %d thread%s: %.3e particle-steps/s (%.1f ns per particle-step; CPU time of all "
+          "threads %.1f ns), %llu list builds, %.2f neighbours per particle (full list), %zu particles at the "
+          "end\n",
+          r + 1, opt.threads[k], opt.threads[k] > 1 ? "s" : " ", t.particle_steps_per_second,
+          1e9 / t.particle_steps_per_second, 1e9 * cpu / particle_steps, static_cast<unsigned long long>(t.list_builds),
+          t.neighbours, t.particles_end);
       std::fflush(stdout);
       timings[k].push_back(std::move(t));
     }
@@ -259,7 +266,8 @@ int main(int argc, char **argv) {
     med[k] = median(v);
   }
   for (std::size_t k = 0; k < opt.threads.size(); ++k) {
-    const std::string name = "spreadmap, " + std::to_string(opt.threads[k]) + " thread" + (opt.threads[k] > 1 ? "s" : "");
+    const std::string name =
+        "spreadmap, " + std::to_string(opt.threads[k]) + " thread" + (opt.threads[k] > 1 ? "s" : "");
     std::printf("%-28s %16.3e %12.2f %12.2f   (median of %d)\n", name.c_str(), med[k], med[k] / med[0],
                 med[k] / opt.liggghts, opt.repeats);
   }

@@ -35,9 +35,9 @@
 #include "analysis/summary.hpp"
 #include "core/registry.hpp"
 #include "core/schema.hpp"
-#include "workflow/case_setup.hpp"
-#include "workflow/layer_eval.hpp"
-#include "workflow/scene.hpp"
+#include "workflow/simulate/case_setup.hpp"
+#include "workflow/characterise/layer_eval.hpp"
+#include "workflow/scene/scene_section.hpp"
 #include "workflow/workflow.hpp"
 
 namespace sm = spreadmap;
@@ -47,7 +47,7 @@ namespace {
 
 struct Variant {
   std::string name;
-  std::string baseline;  // the variant its saving and error are measured against
+  std::string baseline;     // the variant its saving and error are measured against
   bool long_strip = false;  // the long strip instead of the quickstart's scene
   bool sleep = false, idle_walls = false, frictionless = false, force_rotation = false;
   double sleep_speed = 1e-3, sleep_behind = 5e-3;  // [m/s], [m]
@@ -139,7 +139,8 @@ Outcome spread(const sm::Scene &scene, sm::PluginRegistry &registry, const sm::e
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return s.id[a] < s.id[b]; });
   for (std::size_t i : order)
-    for (const auto *col : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz, &s.wx, &s.wy, &s.wz}) o.end_state.push_back((*col)[i]);
+    for (const auto *col : {&s.x, &s.y, &s.z, &s.vx, &s.vy, &s.vz, &s.wx, &s.wy, &s.wz})
+      o.end_state.push_back((*col)[i]);
   return o;
 }
 
@@ -175,8 +176,8 @@ int main(int argc, char **argv) {
       {"long strip, sleep", "long strip", true, true},
       {"long strip, sleep 5 mm/s 2 mm", "long strip", true, true, false, false, false, 5e-3, 2e-3},
   };
-  std::printf("bench_scene_switches: %s at U = 100 mm/s, omega = 0; %d heaps, %d thread%s\n", workflow.filename().c_str(),
-              heaps, threads, threads > 1 ? "s" : "");
+  std::printf("bench_scene_switches: %s at U = 100 mm/s, omega = 0; %d heaps, %d thread%s\n",
+              workflow.filename().c_str(), heaps, threads, threads > 1 ? "s" : "");
   std::printf("machine: %s, %u hardware threads\n", cpu_model().c_str(), std::thread::hardware_concurrency());
   std::fflush(stdout);
 
@@ -192,9 +193,10 @@ int main(int argc, char **argv) {
       out[v].push_back(spread(variant_scene(var.long_strip ? long_strip(scene) : scene, var), registry,
                               var.long_strip ? long_heap : heap, var, workflow));
       const Outcome &o = out[v].back();
-      std::printf("  heap %d, %-32s %6.2f s  V_s %.4f mm^2/s  R_q %.2f um  integrated %.1f %% of particle-steps, %zu "
-                  "asleep at the end\n",
-                  h, variants[v].name.c_str(), o.wall, o.vs * 1e6, o.rq * 1e6, 100 * o.awake_fraction, o.asleep_at_end);
+      std::printf(
+          "  heap %d, %-32s %6.2f s  V_s %.4f mm^2/s  R_q %.2f um  integrated %.1f %% of particle-steps, %zu "
+          "asleep at the end\n",
+          h, variants[v].name.c_str(), o.wall, o.vs * 1e6, o.rq * 1e6, 100 * o.awake_fraction, o.asleep_at_end);
       std::fflush(stdout);
     }
   }
@@ -221,11 +223,15 @@ int main(int argc, char **argv) {
     };
     std::printf("%-32s %9.2f %7.1f%% %11.4f ± %6.4f %11.2f ± %6.2f %+10.2f %+10.2f %9s\n", variants[v].name.c_str(),
                 median(wall), v == b ? 0.0 : 100 * (1 - median(wall) / median(wall_b)), s_vs.mean * 1e6, s_vs.sd * 1e6,
-                s_rq.mean * 1e6, s_rq.sd * 1e6, v == b ? 0.0 : in_sigma(s_vs, b_vs), v == b ? 0.0 : in_sigma(s_rq, b_rq),
-                v == b ? "-" : same ? "yes" : "no");
+                s_rq.mean * 1e6, s_rq.sd * 1e6, v == b ? 0.0 : in_sigma(s_vs, b_vs),
+                v == b ? 0.0 : in_sigma(s_rq, b_rq),
+                v == b ? "-"
+                : same ? "yes"
+                       : "no");
   }
-  std::printf("\nsaving and changes are against the variant's baseline (reference, or the frictionless scene with "
-              "rotation forced); σ: combined standard error of the two means over %d heaps\n",
-              heaps);
+  std::printf(
+      "\nsaving and changes are against the variant's baseline (reference, or the frictionless scene with "
+      "rotation forced); σ: combined standard error of the two means over %d heaps\n",
+      heaps);
   return 0;
 }

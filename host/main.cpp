@@ -51,12 +51,14 @@ void check_cluster_options(const sm::cluster::ClusterOptions &cl, const sm::RunO
                          (near.empty() ? "" : "; did you mean '" + near + "'?"));
   }
   if (cl.dry_run && cl.executor != "slurm")
-    throw sm::InputError("error: --dry-run writes the Slurm scripts without submitting them: use it with --executor slurm");
+    throw sm::InputError(
+        "error: --dry-run writes the Slurm scripts without submitting them: use it with --executor slurm");
   if (vm.count("threads-per-rank") && cl.threads_per_rank < 1)
     throw sm::InputError("error: --threads-per-rank must be at least 1");
   if (vm.count("threads-per-rank") && cl.executor == "local" && !opt.only_case)
-    throw sm::InputError("error: --threads-per-rank is for --executor mpi or slurm (or --case); a local run takes "
-                         "scene.threads and --jobs");
+    throw sm::InputError(
+        "error: --threads-per-rank is for --executor mpi or slurm (or --case); a local run takes "
+        "scene.threads and --jobs");
   if (opt.jobs != 1 && cl.executor != "local")
     throw sm::InputError("error: --jobs is for the local executor; with --executor " + cl.executor +
                          " each rank or array task runs one case at a time (see --threads-per-rank)");
@@ -91,10 +93,11 @@ int cmd_run(int argc, char **argv) {
       "cases to the other ranks) | slurm (a job array per case and a job for the later stages)")(
       "threads-per-rank", po::value(&cluster.threads_per_rank),
       "OpenMP threads of each case on an MPI rank or Slurm task (default: scene.threads, else the rank's share of "
-      "its node's CPUs; Slurm: 1)")(
-      "dry-run", po::bool_switch(&cluster.dry_run), "with --executor slurm: write the scripts and print the path of "
-      "submit.sh, submit nothing")(
-      "case", po::value(&one_case), "run only case N of the design (case 7 is c007), leaving manifest.json alone: what one "
+      "its node's CPUs; Slurm: 1)")("dry-run", po::bool_switch(&cluster.dry_run),
+                                    "with --executor slurm: write the scripts and print the path of "
+                                    "submit.sh, submit nothing")(
+      "case", po::value(&one_case),
+      "run only case N of the design (case 7 is c007), leaving manifest.json alone: what one "
       "Slurm array task runs; implies --only simulate");
   c.add(d);
   po::positional_options_description p;
@@ -201,8 +204,8 @@ int cmd_plugins(int argc, char **argv) {
     for (const auto &k : kinds)
       for (const auto &n : reg.names(k)) every.push_back(n);
     const std::string near = sm::closest(name, every);
-    throw sm::InputError("error: no plugin named '" + name + "'" + (near.empty() ? "" : "; did you mean '" + near + "'?") +
-                         " available: " + sm::join(every));
+    throw sm::InputError("error: no plugin named '" + name + "'" +
+                         (near.empty() ? "" : "; did you mean '" + near + "'?") + " available: " + sm::join(every));
   }
   if (format == "json") std::cout << all.dump(2) << "\n";
   return 0;
@@ -234,10 +237,12 @@ int main(int argc, char **argv) {
     if (cmd == "validate") return cmd_validate(argc - 1, argv + 1);
     if (cmd == "plugins") return cmd_plugins(argc - 1, argv + 1);
     if (auto sub = sm::find_command(cmd)) return sub(argc - 1, argv + 1);
-    const std::vector<std::string> cmds = {"run", "validate", "plugins", "characterise", "train", "map", "query", "render"};
+    const std::vector<std::string> cmds = {"run",   "validate", "plugins", "characterise",
+                                           "train", "map",      "query",   "render"};
     const std::string near = sm::closest(cmd, cmds);
     std::cerr << "error: unknown command '" << cmd << "'" << (near.empty() ? "" : "; did you mean '" + near + "'?")
-              << "\n" << usage;
+              << "\n"
+              << usage;
     return sm::exit_input;
   } catch (const sm::Error &e) {
     std::cerr << e.what() << "\n";

@@ -37,7 +37,8 @@ AdaptiveResult adaptive_design(const Eigen::MatrixXd &cand, const std::function<
   std::vector<std::size_t> start = opt.initial.empty() ? space_filling_start(cand) : opt.initial;
   if (start.size() < 3) throw std::invalid_argument("adaptive design: start with at least 3 cases");
   for (auto i : start)
-    if (i >= std::size_t(cand.rows())) throw std::invalid_argument("adaptive design: an initial row is not a candidate");
+    if (i >= std::size_t(cand.rows()))
+      throw std::invalid_argument("adaptive design: an initial row is not a candidate");
   if (opt.budget < start.size())
     throw std::invalid_argument("adaptive design: budget " + std::to_string(opt.budget) + " is below the " +
                                 std::to_string(start.size()) + " initial cases");
@@ -45,7 +46,8 @@ AdaptiveResult adaptive_design(const Eigen::MatrixXd &cand, const std::function<
   std::vector<Eigen::VectorXd> ys;
   auto run = [&](std::size_t i) {
     const Eigen::VectorXd y = evaluate(cand.row(Eigen::Index(i)).transpose());
-    if (!ys.empty() && y.size() != ys.front().size()) throw std::runtime_error("adaptive design: evaluate() changed its output count");
+    if (!ys.empty() && y.size() != ys.front().size())
+      throw std::runtime_error("adaptive design: evaluate() changed its output count");
     ys.push_back(y), r.chosen.push_back(i), used[i] = true;
   };
   for (auto i : start) run(i);
@@ -54,15 +56,19 @@ AdaptiveResult adaptive_design(const Eigen::MatrixXd &cand, const std::function<
   while (true) {
     const auto n = Eigen::Index(r.chosen.size());
     r.x.resize(n, cand.cols()), r.y.resize(n, ys.front().size());
-    for (Eigen::Index k = 0; k < n; ++k) r.x.row(k) = cand.row(Eigen::Index(r.chosen[std::size_t(k)])), r.y.row(k) = ys[std::size_t(k)];
+    for (Eigen::Index k = 0; k < n; ++k)
+      r.x.row(k) = cand.row(Eigen::Index(r.chosen[std::size_t(k)])), r.y.row(k) = ys[std::size_t(k)];
     auto model = make_model();
-    if (!model->has_std()) throw std::invalid_argument("adaptive design: the model gives no standard deviation (use surrogate/gp)");
+    if (!model->has_std())
+      throw std::invalid_argument("adaptive design: the model gives no standard deviation (use surrogate/gp)");
     model->fit(r.x, r.y);
     const nlohmann::json info = model->fit_info();
-    if (!info.contains("loo_mean")) throw std::invalid_argument("adaptive design: the model reports no loo_mean (use surrogate/gp)");
+    if (!info.contains("loo_mean"))
+      throw std::invalid_argument("adaptive design: the model reports no loo_mean (use surrogate/gp)");
     Eigen::MatrixXd loo(n, r.y.cols());
     for (Eigen::Index k = 0; k < n; ++k)
-      for (Eigen::Index c = 0; c < r.y.cols(); ++c) loo(k, c) = info["loo_mean"].at(std::size_t(k)).at(std::size_t(c)).get<double>();
+      for (Eigen::Index c = 0; c < r.y.cols(); ++c)
+        loo(k, c) = info["loo_mean"].at(std::size_t(k)).at(std::size_t(c)).get<double>();
     AdaptiveStep step{std::size_t(n), {}};
     bool good = true;
     for (Eigen::Index c = 0; c < r.y.cols(); ++c) {
@@ -72,7 +78,8 @@ AdaptiveResult adaptive_design(const Eigen::MatrixXd &cand, const std::function<
     }
     r.history.push_back(step);
     good_in_a_row = good && r.history.size() > 1 ? good_in_a_row + 1 : 0;
-    if (good_in_a_row >= std::max<std::size_t>(1, opt.confirm)) return r.reached_target = true, r.stop_reason = "target", r;
+    if (good_in_a_row >= std::max<std::size_t>(1, opt.confirm))
+      return r.reached_target = true, r.stop_reason = "target", r;
     if (r.chosen.size() >= opt.budget) return r.stop_reason = "budget", r;
     if (r.chosen.size() >= std::size_t(cand.rows())) return r.stop_reason = "candidates exhausted", r;
 

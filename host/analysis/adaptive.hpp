@@ -27,16 +27,16 @@ struct AdaptiveOptions {
 };
 
 struct AdaptiveStep {
-  std::size_t cases = 0;            // cases fitted at this step
-  std::vector<double> loo_nrmse;    // [%] per output
+  std::size_t cases = 0;          // cases fitted at this step
+  std::vector<double> loo_nrmse;  // [%] per output
 };
 
 struct AdaptiveResult {
-  Eigen::MatrixXd x, y;                 // the cases run, in order
-  std::vector<std::size_t> chosen;      // their candidate rows, in order
-  std::vector<AdaptiveStep> history;    // one per fit
+  Eigen::MatrixXd x, y;               // the cases run, in order
+  std::vector<std::size_t> chosen;    // their candidate rows, in order
+  std::vector<AdaptiveStep> history;  // one per fit
   bool reached_target = false;
-  std::string stop_reason;              // "target" | "budget" | "candidates exhausted"
+  std::string stop_reason;  // "target" | "budget" | "candidates exhausted"
 };
 
 // The 3^d lattice of the candidates' bounding box (corners, edge midpoints, centre), each point
@@ -46,7 +46,8 @@ std::vector<std::size_t> space_filling_start(const Eigen::MatrixXd &candidates);
 // candidates: allowed settings (rows x inputs), e.g. the 5 x 9 design grid or a finer one.
 // make_model: a fresh unfitted model (surrogate/gp) each step. evaluate: runs one case, returns its
 // outputs (the host connects it to a simulation).
-AdaptiveResult adaptive_design(const Eigen::MatrixXd &candidates, const std::function<std::unique_ptr<Model>()> &make_model,
+AdaptiveResult adaptive_design(const Eigen::MatrixXd &candidates,
+                               const std::function<std::unique_ptr<Model>()> &make_model,
                                const std::function<Eigen::VectorXd(const Eigen::VectorXd &)> &evaluate,
                                const AdaptiveOptions &options = {});
 

@@ -17,9 +17,9 @@ struct Model {
   virtual void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y) = 0;  // rows = samples
   virtual Prediction predict(const Eigen::MatrixXd &x) const = 0;
   virtual bool has_std() const = 0;
-  virtual nlohmann::json state() const = 0;       // what save() writes: enough to predict again
+  virtual nlohmann::json state() const = 0;  // what save() writes: enough to predict again
   virtual void load(const nlohmann::json &state) = 0;
-  virtual nlohmann::json fit_info() const = 0;    // facts of the last fit
+  virtual nlohmann::json fit_info() const = 0;  // facts of the last fit
 };
 
 }  // namespace spreadmap::analysis

@@ -17,7 +17,8 @@ nlohmann::json to_json(const std::vector<Variable> &vars) {
 }
 std::vector<Variable> variables(const nlohmann::json &a) {
   std::vector<Variable> out;
-  for (const auto &v : a) out.push_back({v.at("name").get<std::string>(), v.value("unit", "-"), v.value("min", 0.0), v.value("max", 0.0)});
+  for (const auto &v : a)
+    out.push_back({v.at("name").get<std::string>(), v.value("unit", "-"), v.value("min", 0.0), v.value("max", 0.0)});
   return out;
 }
 }  // namespace
@@ -28,10 +29,9 @@ std::string ModelFile::plugin_name() const {
 }
 
 void save_model_json(const std::string &path, const ModelFile &m) {
-  const nlohmann::json j = {{"format", "spreadmap-model"}, {"version", 1}, {"plugin", m.plugin},
-                            {"plugin_version", m.plugin_version}, {"params", m.params},
-                            {"inputs", to_json(m.inputs)}, {"outputs", to_json(m.outputs)},
-                            {"state", m.state}, {"training", m.training}};
+  const nlohmann::json j = {{"format", "spreadmap-model"},        {"version", 1},       {"plugin", m.plugin},
+                            {"plugin_version", m.plugin_version}, {"params", m.params}, {"inputs", to_json(m.inputs)},
+                            {"outputs", to_json(m.outputs)},      {"state", m.state},   {"training", m.training}};
   write_atomic(path, j.dump(1) + "\n");
 }
 

@@ -18,9 +18,9 @@ struct Variable {
 };
 
 struct ModelFile {
-  std::string plugin;          // "surrogate/<name>"
-  std::string plugin_version;  // "1.0.0"
-  nlohmann::json params = nlohmann::json::object();    // validated SI parameters of the instance
+  std::string plugin;                                // "surrogate/<name>"
+  std::string plugin_version;                        // "1.0.0"
+  nlohmann::json params = nlohmann::json::object();  // validated SI parameters of the instance
   std::vector<Variable> inputs, outputs;
   nlohmann::json state;                                // the plugin's save()
   nlohmann::json training = nlohmann::json::object();  // split, rows, report, source file...

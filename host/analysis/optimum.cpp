@@ -31,8 +31,8 @@ Optimum find_optimum(const GridMap &g, std::size_t vs, std::size_t rq, double rq
   o.vs = m(r, Eigen::Index(vs)), o.rq = m(r, Eigen::Index(rq));
   if (g.prediction.std.size()) {
     o.rq_std = g.prediction.std(r, Eigen::Index(rq));
-    o.probability = o.rq_std > 0 ? 0.5 * std::erfc(-(rq_max - o.rq) / (o.rq_std * std::sqrt(2.0)))
-                                 : (o.rq <= rq_max ? 1.0 : 0.0);
+    o.probability =
+        o.rq_std > 0 ? 0.5 * std::erfc(-(rq_max - o.rq) / (o.rq_std * std::sqrt(2.0))) : (o.rq <= rq_max ? 1.0 : 0.0);
   }
   return o;
 }
@@ -47,7 +47,8 @@ nlohmann::json Optimum::to_json(const std::vector<std::string> &names) const {
   nlohmann::json j = {{"rq_max", rq_max}, {"found", found}};
   if (!found) return j;
   nlohmann::json in = nlohmann::json::object();
-  for (Eigen::Index k = 0; k < x.size(); ++k) in[k < Eigen::Index(names.size()) ? names[std::size_t(k)] : "x" + std::to_string(k)] = x[k];
+  for (Eigen::Index k = 0; k < x.size(); ++k)
+    in[k < Eigen::Index(names.size()) ? names[std::size_t(k)] : "x" + std::to_string(k)] = x[k];
   j["inputs"] = in, j["vs"] = vs, j["rq"] = rq, j["grid_row"] = row;
   if (rq_std >= 0) j["rq_std"] = rq_std, j["probability"] = probability;
   return j;

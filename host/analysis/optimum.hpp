@@ -25,7 +25,8 @@ struct Optimum {
 
 // vs, rq: column indices of V_s and R_q among the grid's outputs.
 Optimum find_optimum(const GridMap &grid, std::size_t vs, std::size_t rq, double rq_max);
-std::vector<Optimum> find_optima(const GridMap &grid, std::size_t vs, std::size_t rq, const std::vector<double> &rq_max);
+std::vector<Optimum> find_optima(const GridMap &grid, std::size_t vs, std::size_t rq,
+                                 const std::vector<double> &rq_max);
 
 // The frontier: for each R_q level (ascending), the largest V_s with predicted R_q <= level — a
 // non-decreasing staircase. levels empty: `n_levels` evenly spaced over the predicted R_q range.

@@ -14,7 +14,8 @@ const sm_surrogate_ops_v1 *surrogate_ops(const sm_plugin_v1 *p) {
   if (!p) throw std::invalid_argument("no surrogate plugin given");
   if (p->abi != SPREADMAP_PLUGIN_ABI)
     throw std::runtime_error(std::string("surrogate/") + p->name + " uses plugin ABI " + std::to_string(p->abi) +
-                             ", this host needs ABI " + std::to_string(SPREADMAP_PLUGIN_ABI) + ": rebuild it with this SDK");
+                             ", this host needs ABI " + std::to_string(SPREADMAP_PLUGIN_ABI) +
+                             ": rebuild it with this SDK");
   if (std::strcmp(p->kind, "surrogate") != 0)
     throw std::invalid_argument(std::string(p->kind) + "/" + p->name + " is not a surrogate plugin");
   if (!p->ops) throw std::runtime_error(std::string("surrogate/") + p->name + " has no ops table");

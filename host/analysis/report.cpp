@@ -57,8 +57,10 @@ Report make_report(const Model &model, const Eigen::MatrixXd &x, const Eigen::Ma
 nlohmann::json Report::to_json() const {
   nlohmann::json outs = nlohmann::json::array();
   for (const auto &o : outputs)
-    outs.push_back({{"name", o.name}, {"nrmse_train", number_or_null(o.nrmse_train)},
-                    {"nrmse_test", number_or_null(o.nrmse_test)}, {"r_train", number_or_null(o.r_train)},
+    outs.push_back({{"name", o.name},
+                    {"nrmse_train", number_or_null(o.nrmse_train)},
+                    {"nrmse_test", number_or_null(o.nrmse_test)},
+                    {"r_train", number_or_null(o.r_train)},
                     {"r_test", number_or_null(o.r_test)}});
   return {{"n_train", n_train}, {"n_test", n_test}, {"nrmse_unit", "%"}, {"outputs", outs}};
 }

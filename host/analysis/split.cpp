@@ -38,7 +38,9 @@ Split study_split(std::size_t rows, std::uint64_t seed) {
 }
 
 std::vector<Split> k_fold(std::size_t rows, std::size_t k, std::uint64_t seed) {
-  if (k < 2 || k > rows) throw std::invalid_argument("k-fold needs 2 <= k <= rows (" + std::to_string(rows) + "), got k = " + std::to_string(k));
+  if (k < 2 || k > rows)
+    throw std::invalid_argument("k-fold needs 2 <= k <= rows (" + std::to_string(rows) +
+                                "), got k = " + std::to_string(k));
   const auto p = shuffled(rows, seed);
   std::vector<Split> folds(k);
   for (std::size_t i = 0; i < rows; ++i)
@@ -59,7 +61,8 @@ Split split_from_column(const Table &table, const std::string &column) {
       throw std::runtime_error(table.source() + ": row " + std::to_string(r + 1) + ", column '" + table.columns()[c] +
                                "': '" + table.text(r, c) + "' is neither train nor test");
   }
-  if (s.train.size() < 2) throw std::runtime_error(table.source() + ": column '" + column + "' marks fewer than 2 rows as train");
+  if (s.train.size() < 2)
+    throw std::runtime_error(table.source() + ": column '" + column + "' marks fewer than 2 rows as train");
   return s;
 }
 

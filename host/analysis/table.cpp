@@ -41,7 +41,10 @@ std::vector<Field> split_line(const std::string &line, const std::string &where)
       while (i < line.size()) {
         if (line[i] == '"') {
           if (i + 1 < line.size() && line[i + 1] == '"') f.text += '"', i += 2;
-          else { ++i, closed = true; break; }
+          else {
+            ++i, closed = true;
+            break;
+          }
         } else f.text += line[i++];
       }
       if (!closed) throw std::runtime_error(where + ":" + std::to_string(f.column) + ": unterminated quoted field");
@@ -66,7 +69,8 @@ std::string quoted(const std::string &s) {
 
 }  // namespace
 
-Table::Table(std::vector<std::string> columns, std::string source) : columns_(std::move(columns)), source_(std::move(source)) {}
+Table::Table(std::vector<std::string> columns, std::string source)
+    : columns_(std::move(columns)), source_(std::move(source)) {}
 
 Table Table::read_csv(const std::string &path) { return parse_csv(read_file(path), path); }
 
@@ -88,9 +92,11 @@ Table Table::parse_csv(const std::string &text, const std::string &source) {
     auto fields = split_line(line, where);
     if (header) {
       for (const auto &f : fields) {
-        if (f.text.empty()) throw std::runtime_error(where + ":" + std::to_string(f.column) + ": empty column name in the header");
+        if (f.text.empty())
+          throw std::runtime_error(where + ":" + std::to_string(f.column) + ": empty column name in the header");
         if (t.has_column(f.text))
-          throw std::runtime_error(where + ":" + std::to_string(f.column) + ": column '" + f.text + "' appears twice (names match case-insensitively)");
+          throw std::runtime_error(where + ":" + std::to_string(f.column) + ": column '" + f.text +
+                                   "' appears twice (names match case-insensitively)");
         t.columns_.push_back(f.text);
       }
       header = false;
@@ -146,7 +152,8 @@ double Table::number(std::size_t row, std::size_t col) const {
   const char *b = s.data() + (!s.empty() && s[0] == '+' ? 1 : 0), *e = s.data() + s.size();
   const auto r = std::from_chars(b, e, v);
   if (s.empty() || r.ec != std::errc() || r.ptr != e) {
-    const std::string line = row < lines_.size() && lines_[row] ? std::to_string(lines_[row]) : "row " + std::to_string(row + 1);
+    const std::string line =
+        row < lines_.size() && lines_[row] ? std::to_string(lines_[row]) : "row " + std::to_string(row + 1);
     throw std::runtime_error(source_ + ":" + line + ": column " + std::to_string(col + 1) + " ('" + columns_[col] +
                              "'): '" + s + "' is not a number");
   }

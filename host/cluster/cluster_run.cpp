@@ -5,13 +5,13 @@
 
 namespace spreadmap::cluster {
 
-int run_on_mpi(const std::filesystem::path &workflow, RunOptions options,
-               const ClusterOptions &cluster, PluginRegistry &registry);  // mpi_run.cpp, or mpi_missing.cpp
+int run_on_mpi(const std::filesystem::path &workflow, RunOptions options, const ClusterOptions &cluster,
+               PluginRegistry &registry);  // mpi_run.cpp, or mpi_missing.cpp
 
 std::vector<std::string> executor_names() { return {"local", "mpi", "slurm"}; }
 
-int run_distributed(const std::filesystem::path &workflow, RunOptions options,
-                    const ClusterOptions &cluster, PluginRegistry &registry) {
+int run_distributed(const std::filesystem::path &workflow, RunOptions options, const ClusterOptions &cluster,
+                    PluginRegistry &registry) {
   if (cluster.executor == "mpi") return run_on_mpi(workflow, options, cluster, registry);
   if (cluster.executor == "slurm") {
     SlurmExecutor slurm(cluster.dry_run, cluster.threads_per_rank);

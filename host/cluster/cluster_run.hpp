@@ -19,7 +19,7 @@ struct ClusterOptions {
 std::vector<std::string> executor_names();
 bool mpi_available();  // this build can run --executor mpi
 
-int run_distributed(const std::filesystem::path &workflow, RunOptions options,
-                    const ClusterOptions &cluster, PluginRegistry &registry);
+int run_distributed(const std::filesystem::path &workflow, RunOptions options, const ClusterOptions &cluster,
+                    PluginRegistry &registry);
 
 }  // namespace spreadmap::cluster

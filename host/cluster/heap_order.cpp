@@ -18,10 +18,8 @@ HeapOrder order_by_heap(const std::vector<CaseJob> &jobs, PluginRegistry &regist
   HeapOrder order;
   std::set<std::string> settling;
   for (const auto &job : jobs) {
-    if (!heap_ready(job, registry) && settling.insert(heap_key(job, registry)).second)
-      order.first.push_back(job.index);
-    else
-      order.rest.push_back(job.index);
+    if (!heap_ready(job, registry) && settling.insert(heap_key(job, registry)).second) order.first.push_back(job.index);
+    else order.rest.push_back(job.index);
   }
   return order;
 }

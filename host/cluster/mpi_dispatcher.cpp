@@ -10,8 +10,8 @@
 #include "cluster/heap_order.hpp"
 #include "core/error.hpp"
 #include "core/stop.hpp"
-#include "workflow/local_executor.hpp"
-#include "workflow/progress.hpp"
+#include "workflow/executors/local_executor.hpp"
+#include "workflow/run/progress.hpp"
 
 namespace spreadmap::cluster {
 namespace {

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "cluster/mpi_session.hpp"
-#include "workflow/executor_hook.hpp"
+#include "workflow/executors/executor_hook.hpp"
 #include "workflow/stage.hpp"
 
 namespace spreadmap::cluster {

@@ -8,8 +8,8 @@ namespace spreadmap::cluster {
 
 bool mpi_available() { return true; }
 
-int run_on_mpi(const std::filesystem::path &workflow, RunOptions options,
-               const ClusterOptions &cluster, PluginRegistry &registry) {
+int run_on_mpi(const std::filesystem::path &workflow, RunOptions options, const ClusterOptions &cluster,
+               PluginRegistry &registry) {
   MpiSession mpi;
   if (mpi.rank() > 0) return serve_cases(mpi, cluster.threads_per_rank, registry);
   MpiDispatcher dispatcher(mpi, cluster.threads_per_rank);

@@ -3,7 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "cluster/cpu_share.hpp"
-#include "workflow/executor_hook.hpp"
+#include "workflow/executors/executor_hook.hpp"
 
 namespace spreadmap::cluster {
 

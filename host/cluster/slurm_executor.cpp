@@ -85,15 +85,17 @@ void SlurmExecutor::run_cases(CaseBatch &batch, StageContext &ctx) {
     return;
   }
   if (!on_path("sbatch"))
-    throw InputError("error: --executor slurm: sbatch was not found on PATH, so nothing was submitted. Run this on a "
-                     "machine of the Slurm cluster (a login node), or submit the scripts written in " +
-                     files.dir.string() + " from one: bash " + files.submit.string());
+    throw InputError(
+        "error: --executor slurm: sbatch was not found on PATH, so nothing was submitted. Run this on a "
+        "machine of the Slurm cluster (a login node), or submit the scripts written in " +
+        files.dir.string() + " from one: bash " + files.submit.string());
   std::cout << submit(files.submit) << std::flush;
 }
 
 void SlurmExecutor::release() {
-  throw InputError("error: --executor slurm hands out the simulate stage's cases, and this run has none to hand out "
-                   "(no simulate stage selected); run the other stages without --executor");
+  throw InputError(
+      "error: --executor slurm hands out the simulate stage's cases, and this run has none to hand out "
+      "(no simulate stage selected); run the other stages without --executor");
 }
 
 }  // namespace spreadmap::cluster

@@ -3,7 +3,7 @@
 // scripts are written into <run>/slurm/; --dry-run prints the path of submit.sh and stops there,
 // otherwise submit.sh runs (sbatch) and its job ids are printed. Nothing is computed here.
 #pragma once
-#include "workflow/executor_hook.hpp"
+#include "workflow/executors/executor_hook.hpp"
 #include "workflow/stage.hpp"
 
 namespace spreadmap::cluster {

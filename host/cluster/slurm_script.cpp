@@ -151,7 +151,8 @@ SlurmFiles write_slurm_files(const SlurmPlan &plan) {
   // stale scripts of an earlier call would be submitted by hand by mistake
   for (const char *name : {"heap_cases.sbatch", "cases.sbatch"}) fs::remove(f.dir / name);
   if (!f.heap_cases.empty())
-    write(f.heap_cases, case_array_script(plan, plan.heap_cases, "each settles a powder heap that the other cases reuse"));
+    write(f.heap_cases,
+          case_array_script(plan, plan.heap_cases, "each settles a powder heap that the other cases reuse"));
   if (!f.other_cases.empty())
     write(f.other_cases, case_array_script(plan, plan.other_cases,
                                            plan.heap_cases.empty() ? "their powder heaps are settled already"

@@ -7,10 +7,10 @@ namespace spreadmap {
 
 enum ExitCode : int {
   exit_ok = 0,
-  exit_failure = 1,      // a run failed (unstable case, I/O error)
-  exit_input = 2,        // bad workflow, parameter, file or command line
-  exit_plugin = 3,       // a plugin could not be loaded or refused its parameters
-  exit_interrupted = 130 // SIGINT / SIGTERM: stopped cleanly, resumable
+  exit_failure = 1,       // a run failed (unstable case, I/O error)
+  exit_input = 2,         // bad workflow, parameter, file or command line
+  exit_plugin = 3,        // a plugin could not be loaded or refused its parameters
+  exit_interrupted = 130  // SIGINT / SIGTERM: stopped cleanly, resumable
 };
 
 struct Error : std::runtime_error {

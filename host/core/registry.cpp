@@ -69,14 +69,16 @@ const LoadedPlugin &PluginRegistry::load_file(const fs::path &file, const std::s
   if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
   auto lib = std::make_shared<boost::dll::shared_library>();
   boost::dll::fs::error_code ec;
-  lib->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local, ec);
+  lib->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local,
+            ec);
   if (ec)
     throw PluginError("error: cannot load plugin " + file.string() + ": " + ec.message() +
                       "\n  is it a shared library built for this machine? rebuild it with this SDK");
   if (!lib->has("spreadmap_plugin_v1"))
     throw PluginError("error: " + file.string() +
                       " is not a spreadmap plugin: it has no entry point 'spreadmap_plugin_v1'\n"
-                      "  plugins end with SPREADMAP_PLUGIN(...) or SPREADMAP_CONTACT_PLUGIN(...) and build with spreadmap_add_plugin()");
+                      "  plugins end with SPREADMAP_PLUGIN(...) or SPREADMAP_CONTACT_PLUGIN(...) and build with "
+                      "spreadmap_add_plugin()");
   const auto entry = lib->get<const sm_plugin_v1 *()>("spreadmap_plugin_v1");
   const sm_plugin_v1 *d = entry();
   if (!d) throw PluginError("error: " + file.string() + ": its entry point returned no descriptor");
@@ -112,8 +114,8 @@ const LoadedPlugin &PluginRegistry::get(const std::string &kind, const std::stri
     const std::string near = closest(name, available);
     std::string roots;
     for (const auto &r : roots_) roots += (roots.empty() ? "" : ", ") + (r / kind).string();
-    msg += "\n  " + (near.empty() ? std::string() : "did you mean '" + near + "'? ") + "available: " +
-           (available.empty() ? std::string("none") : join(available)) + " (searched " + roots + ")";
+    msg += "\n  " + (near.empty() ? std::string() : "did you mean '" + near + "'? ") +
+           "available: " + (available.empty() ? std::string("none") : join(available)) + " (searched " + roots + ")";
     throw PluginError(msg);
   }
   const LoadedPlugin &p = load_file(files.front(), kind);

@@ -13,12 +13,18 @@ namespace {
 
 const char *type_name(sm_param_type t) {
   switch (t) {
-    case SM_NUMBER: return "number";
-    case SM_INTEGER: return "integer";
-    case SM_BOOLEAN: return "boolean";
-    case SM_ENUM: return "enum";
-    case SM_STRING: return "string";
-    case SM_TABLE: return "table";
+    case SM_NUMBER:
+      return "number";
+    case SM_INTEGER:
+      return "integer";
+    case SM_BOOLEAN:
+      return "boolean";
+    case SM_ENUM:
+      return "enum";
+    case SM_STRING:
+      return "string";
+    case SM_TABLE:
+      return "table";
   }
   return "?";
 }
@@ -42,7 +48,8 @@ std::string fmt_num(double v) {
 }
 
 std::string range_text(const sm_param_v1 &p) {
-  return "[" + fmt_num(p.min) + ", " + fmt_num(p.max) + "]" + (p.unit && std::string(p.unit) != "-" ? std::string(" ") + p.unit : "");
+  return "[" + fmt_num(p.min) + ", " + fmt_num(p.max) + "]" +
+         (p.unit && std::string(p.unit) != "-" ? std::string(" ") + p.unit : "");
 }
 
 }  // namespace
@@ -82,8 +89,11 @@ nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, con
   const Location at = Location::of(file, value);
   if (p.type == SM_TABLE) return yaml_to_json(value);
   if (!value.IsScalar()) {
-    diag.error(at, key_path, fmt::format("expected a {} here, found a {}", type_name(p.type),
-                                         value.IsSequence() ? "list" : value.IsMap() ? "mapping" : "null"),
+    diag.error(at, key_path,
+               fmt::format("expected a {} here, found a {}", type_name(p.type),
+                           value.IsSequence() ? "list"
+                           : value.IsMap()    ? "mapping"
+                                              : "null"),
                p.doc ? fmt::format("{}: {}", p.name, p.doc) : "");
     return nullptr;
   }
@@ -135,8 +145,10 @@ nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, con
                  near.empty() ? "" : fmt::format("did you mean '{}'?", near));
       return nullptr;
     }
-    case SM_STRING: return s;
-    default: return nullptr;
+    case SM_STRING:
+      return s;
+    default:
+      return nullptr;
   }
 }
 
@@ -171,8 +183,8 @@ nlohmann::json validate_params(const SchemaView &schema, const YAML::Node &secti
   return out;
 }
 
-void fill_defaults(const SchemaView &schema, nlohmann::json &out, const Location &where,
-                   const std::string &key_path, Diagnostics &diag) {
+void fill_defaults(const SchemaView &schema, nlohmann::json &out, const Location &where, const std::string &key_path,
+                   Diagnostics &diag) {
   const std::string prefix = key_path.empty() ? "" : key_path + ".";
   for (std::size_t i = 0; i < schema.n; ++i) {
     const sm_param_v1 &p = schema.params[i];
@@ -184,12 +196,22 @@ void fill_defaults(const SchemaView &schema, nlohmann::json &out, const Location
       continue;
     }
     switch (p.type) {
-      case SM_NUMBER: out[p.name] = p.def; break;
-      case SM_INTEGER: out[p.name] = static_cast<long>(p.def); break;
-      case SM_BOOLEAN: out[p.name] = p.def != 0; break;
+      case SM_NUMBER:
+        out[p.name] = p.def;
+        break;
+      case SM_INTEGER:
+        out[p.name] = static_cast<long>(p.def);
+        break;
+      case SM_BOOLEAN:
+        out[p.name] = p.def != 0;
+        break;
       case SM_ENUM:
-      case SM_STRING: out[p.name] = p.def_text ? p.def_text : ""; break;
-      case SM_TABLE: out[p.name] = nullptr; break;
+      case SM_STRING:
+        out[p.name] = p.def_text ? p.def_text : "";
+        break;
+      case SM_TABLE:
+        out[p.name] = nullptr;
+        break;
     }
   }
 }
@@ -198,8 +220,11 @@ nlohmann::json schema_json(const sm_plugin_v1 &d) {
   auto params = nlohmann::json::array();
   for (std::uint32_t i = 0; i < d.n_params; ++i) {
     const auto &p = d.params[i];
-    nlohmann::json e = {{"name", p.name}, {"type", type_name(p.type)}, {"unit", p.unit ? p.unit : "-"},
-                        {"doc", p.doc ? p.doc : ""}, {"required", p.required != 0}};
+    nlohmann::json e = {{"name", p.name},
+                        {"type", type_name(p.type)},
+                        {"unit", p.unit ? p.unit : "-"},
+                        {"doc", p.doc ? p.doc : ""},
+                        {"required", p.required != 0}};
     if (p.type == SM_NUMBER || p.type == SM_INTEGER) {
       e["min"] = std::isinf(p.min) ? nlohmann::json(nullptr) : nlohmann::json(p.min);
       e["max"] = std::isinf(p.max) ? nlohmann::json(nullptr) : nlohmann::json(p.max);
@@ -213,13 +238,17 @@ nlohmann::json schema_json(const sm_plugin_v1 &d) {
     if (p.type == SM_ENUM) e["choices"] = split_choices(p.choices);
     params.push_back(e);
   }
-  return {{"kind", d.kind}, {"name", d.name}, {"version", d.version}, {"summary", d.summary ? d.summary : ""},
+  return {{"kind", d.kind},
+          {"name", d.name},
+          {"version", d.version},
+          {"summary", d.summary ? d.summary : ""},
           {"params", params}};
 }
 
 std::string describe_schema(const sm_plugin_v1 &d) {
   std::string out = fmt::format("{}/{} {} — {}\n", d.kind, d.name, d.version, d.summary ? d.summary : "");
-  out += fmt::format("  {:<26} {:<8} {:<9} {:<22} {:<12} {}\n", "parameter", "type", "unit", "range", "default", "meaning");
+  out += fmt::format("  {:<26} {:<8} {:<9} {:<22} {:<12} {}\n", "parameter", "type", "unit", "range", "default",
+                     "meaning");
   for (std::uint32_t i = 0; i < d.n_params; ++i) {
     const auto &p = d.params[i];
     std::string range, def;

@@ -22,12 +22,12 @@ struct SchemaView {
 // Validates `section` (a YAML map, or undefined = all defaults). Keys in `skip` belong to the host
 // and are ignored here. Problems go to `diag`; the returned object is complete only when none.
 nlohmann::json validate_params(const SchemaView &schema, const YAML::Node &section, const std::string &file,
-                               const std::string &key_path, Diagnostics &diag,
-                               const std::set<std::string> &skip = {}, bool fill_defaults = true);
+                               const std::string &key_path, Diagnostics &diag, const std::set<std::string> &skip = {},
+                               bool fill_defaults = true);
 
 // Adds the default of every schema key missing from `values`; records a missing required value.
-void fill_defaults(const SchemaView &schema, nlohmann::json &values, const Location &where,
-                   const std::string &key_path, Diagnostics &diag);
+void fill_defaults(const SchemaView &schema, nlohmann::json &values, const Location &where, const std::string &key_path,
+                   Diagnostics &diag);
 
 // Validates one value against one entry; returns its JSON form (SI) or records an error.
 nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, const std::string &file,

@@ -15,20 +15,29 @@ constexpr double pi = 3.14159265358979323846;
 // {factor, pow10, dimension}: decimal scales go to pow10 (see Unit).
 const std::map<std::string, Unit> &base_units() {
   static const std::map<std::string, Unit> units = {
-      {"m", {1, 0, {{1, 0, 0}}}},        {"g", {1, -3, {{0, 1, 0}}}},     {"s", {1, 0, {{0, 0, 1}}}},
-      {"min", {60, 0, {{0, 0, 1}}}},     {"h", {3600, 0, {{0, 0, 1}}}},   {"rad", {1, 0, {}}},
-      {"deg", {pi / 180, 0, {}}},        {"rpm", {2 * pi / 60, 0, {{0, 0, -1}}}},
-      {"N", {1, 0, {{1, 1, -2}}}},       {"Pa", {1, 0, {{-1, 1, -2}}}},   {"J", {1, 0, {{2, 1, -2}}}},
-      {"Hz", {1, 0, {{0, 0, -1}}}},      {"%", {1, -2, {}}},              {"-", {1, 0, {}}},
-      {"1", {1, 0, {}}},                 {"t", {1, 3, {{0, 1, 0}}}},
+      {"m", {1, 0, {{1, 0, 0}}}},
+      {"g", {1, -3, {{0, 1, 0}}}},
+      {"s", {1, 0, {{0, 0, 1}}}},
+      {"min", {60, 0, {{0, 0, 1}}}},
+      {"h", {3600, 0, {{0, 0, 1}}}},
+      {"rad", {1, 0, {}}},
+      {"deg", {pi / 180, 0, {}}},
+      {"rpm", {2 * pi / 60, 0, {{0, 0, -1}}}},
+      {"N", {1, 0, {{1, 1, -2}}}},
+      {"Pa", {1, 0, {{-1, 1, -2}}}},
+      {"J", {1, 0, {{2, 1, -2}}}},
+      {"Hz", {1, 0, {{0, 0, -1}}}},
+      {"%", {1, -2, {}}},
+      {"-", {1, 0, {}}},
+      {"1", {1, 0, {}}},
+      {"t", {1, 3, {{0, 1, 0}}}},
   };
   return units;
 }
 
 const std::map<std::string, int> &prefixes() {
-  static const std::map<std::string, int> p = {
-      {"n", -9}, {"u", -6}, {"\xC2\xB5", -6}, {"\xCE\xBC", -6}, {"m", -3}, {"c", -2},
-      {"k", 3},  {"M", 6},  {"G", 9}};
+  static const std::map<std::string, int> p = {{"n", -9}, {"u", -6}, {"\xC2\xB5", -6}, {"\xCE\xBC", -6}, {"m", -3},
+                                               {"c", -2}, {"k", 3},  {"M", 6},         {"G", 9}};
   return p;
 }
 
@@ -88,10 +97,15 @@ std::optional<Unit> parse_unit(const std::string &text, std::string *why) {
   };
   while (i < text.size()) {
     const char c = text[i];
-    if (c == ' ' || c == '*' || c == '.') { ++i; continue; }
+    if (c == ' ' || c == '*' || c == '.') {
+      ++i;
+      continue;
+    }
     if (c == '/') {
       if (sign < 0) return fail("only one '/' is allowed in a unit");
-      sign = -1; ++i; continue;
+      sign = -1;
+      ++i;
+      continue;
     }
     std::size_t j = i;
     while (j < text.size() && text[j] != ' ' && text[j] != '*' && text[j] != '/' && text[j] != '^' &&
@@ -119,7 +133,9 @@ std::optional<Unit> parse_unit(const std::string &text, std::string *why) {
       result.factor *= std::pow(u->factor, sign * power);
       result.pow10 += sign * power * u->pow10;
       for (int d = 0; d < 3; ++d) result.dim.e[d] += sign * power * u->dim.e[d];
-      any = true; i = j; continue;
+      any = true;
+      i = j;
+      continue;
     }
     auto u = parse_symbol(sym);
     if (!u) return fail("unknown unit '" + sym + "'");
@@ -159,7 +175,10 @@ Quantity parse_quantity(const std::string &text) {
   rest = rest.substr(rest.find_first_not_of(" \t"));
   std::string why;
   auto u = parse_unit(rest, &why);
-  if (!u) throw std::invalid_argument("'" + s + "': " + why + " (known: m, g, s, min, h, rad, deg, rpm, N, Pa, J, Hz, % with prefixes n u m c k M G)");
+  if (!u)
+    throw std::invalid_argument(
+        "'" + s + "': " + why +
+        " (known: m, g, s, min, h, rad, deg, rpm, N, Pa, J, Hz, % with prefixes n u m c k M G)");
   q.has_unit = true;
   q.unit = *u;
   q.value = u->to_si(v);

@@ -28,7 +28,7 @@ struct Unit {
 std::optional<Unit> parse_unit(const std::string &text, std::string *why = nullptr);
 
 struct Quantity {
-  double value = 0;      // in SI
+  double value = 0;  // in SI
   bool has_unit = false;
   Unit unit;
 };

@@ -36,10 +36,10 @@ DeviceProbe ask_runtime() {
   else if (e == cudaErrorInsufficientDriver)
     probe.why_none = "the NVIDIA driver (CUDA " + version_text(driver) + ") is older than this build's CUDA runtime (" +
                      version_text(runtime) + "): CUDA says 'driver version is insufficient'; update the driver";
-  else
-    probe.why_none = std::string("CUDA says '") + cudaGetErrorString(e) + "'";
+  else probe.why_none = std::string("CUDA says '") + cudaGetErrorString(e) + "'";
 #else
-  probe.why_none = "this build has no CUDA backend (configure it with SPREADMAP_ENABLE_CUDA=ON where nvcc is installed)";
+  probe.why_none =
+      "this build has no CUDA backend (configure it with SPREADMAP_ENABLE_CUDA=ON where nvcc is installed)";
 #endif
   return probe;
 }
@@ -78,14 +78,16 @@ Backend choose_backend(const std::string &requested, const DeviceProbe &probe, b
       message = "backend: cuda on " + probe.device + " (auto: a CUDA device is present)";
       return Backend::cuda;
     }
-    message = probe.count > 0 ? "backend: cpu (auto: CUDA device " + probe.device +
-                                    " found, but this build's engine runs cases on the CPU only)"
-                              : "backend: cpu (auto fell back to the CPU: no CUDA device was found; " + probe.why_none + ")";
+    message = probe.count > 0
+                  ? "backend: cpu (auto: CUDA device " + probe.device +
+                        " found, but this build's engine runs cases on the CPU only)"
+                  : "backend: cpu (auto fell back to the CPU: no CUDA device was found; " + probe.why_none + ")";
     return Backend::cpu;
   }
   if (requested == "cuda") {
     if (probe.count == 0)
-      throw InputError("error: scene.backend: cuda was requested, but no CUDA device was found: " + probe.why_none + fix);
+      throw InputError("error: scene.backend: cuda was requested, but no CUDA device was found: " + probe.why_none +
+                       fix);
     if (!engine_ready)
       throw InputError("error: scene.backend: cuda was requested and CUDA device " + probe.device +
                        " is present, but this build's engine runs cases on the CPU only" + fix);

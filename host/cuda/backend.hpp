@@ -10,9 +10,9 @@ const char *name_of(Backend backend);  // "cpu" | "cuda"
 
 // What the CUDA runtime reports about this machine, asked once per process.
 struct DeviceProbe {
-  int count = 0;          // usable CUDA devices
-  std::string device;     // name of device 0 when count > 0
-  std::string why_none;   // when count == 0: why, in plain words
+  int count = 0;         // usable CUDA devices
+  std::string device;    // name of device 0 when count > 0
+  std::string why_none;  // when count == 0: why, in plain words
 };
 
 // True when this build carries the CUDA backend (SPREADMAP_ENABLE_CUDA resolved to ON).

@@ -16,7 +16,7 @@ template <class Real> class DeviceParticles {
  public:
   void upload(const Particles<Real> &host) {
     scalars_ = host;
-    const Real *from[fields] = {host.x, host.y, host.z, host.vx, host.vy, host.vz, host.wx, host.wy, host.wz,
+    const Real *from[fields] = {host.x, host.y, host.z,  host.vx, host.vy, host.vz, host.wx, host.wy, host.wz,
                                 host.r, host.m, host.fx, host.fy, host.fz, host.tx, host.ty, host.tz};
     for (int k = 0; k < fields; ++k) a_[k].upload(from[k], host.n);
   }
@@ -28,12 +28,23 @@ template <class Real> class DeviceParticles {
   void set_time(Real t) { scalars_.t = t; }
   Particles<Real> view() const {
     Particles<Real> p = scalars_;
-    p.x = a_[0].data(); p.y = a_[1].data(); p.z = a_[2].data();
-    p.vx = a_[3].data(); p.vy = a_[4].data(); p.vz = a_[5].data();
-    p.wx = a_[6].data(); p.wy = a_[7].data(); p.wz = a_[8].data();
-    p.r = a_[9].data(); p.m = a_[10].data();
-    p.fx = a_[11].data(); p.fy = a_[12].data(); p.fz = a_[13].data();
-    p.tx = a_[14].data(); p.ty = a_[15].data(); p.tz = a_[16].data();
+    p.x = a_[0].data();
+    p.y = a_[1].data();
+    p.z = a_[2].data();
+    p.vx = a_[3].data();
+    p.vy = a_[4].data();
+    p.vz = a_[5].data();
+    p.wx = a_[6].data();
+    p.wy = a_[7].data();
+    p.wz = a_[8].data();
+    p.r = a_[9].data();
+    p.m = a_[10].data();
+    p.fx = a_[11].data();
+    p.fy = a_[12].data();
+    p.fz = a_[13].data();
+    p.tx = a_[14].data();
+    p.ty = a_[15].data();
+    p.tz = a_[16].data();
     return p;
   }
   // Copies the force and torque accumulators into host's arrays.
@@ -73,8 +84,8 @@ template <class Real> class DeviceWalls {
     hist_.upload(host.hist, std::size_t(n_) * history);
   }
   WallContacts<Real> view() const {
-    return {n_, a_[0].data(), a_[1].data(), a_[2].data(), a_[3].data(), a_[4].data(), a_[5].data(), a_[6].data(),
-            hist_.data()};
+    return {n_,           a_[0].data(), a_[1].data(), a_[2].data(), a_[3].data(),
+            a_[4].data(), a_[5].data(), a_[6].data(), hist_.data()};
   }
   // Copies the records (written by a geometry) and the history (written by a law) back.
   void download(const WallContacts<Real> &host) const {

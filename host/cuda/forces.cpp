@@ -19,8 +19,8 @@ void compute_pair_forces(const ContactKernels &k, const void *law, const Particl
 }
 
 template <class Real>
-void compute_wall_forces(const ContactKernels &k, const void *law, const Particles<Real> &p, const WallContacts<Real> &w,
-                         int device) {
+void compute_wall_forces(const ContactKernels &k, const void *law, const Particles<Real> &p,
+                         const WallContacts<Real> &w, int device) {
   select_device(device);
   DeviceParticles<Real> dp;
   DeviceWalls<Real> dw;
@@ -45,12 +45,12 @@ void compute_geometry_contacts(const GeometryKernels &k, const void *geometry, c
   dw.download(w);  // the records; the history was not uploaded and is not touched
 }
 
-#define SPREADMAP_FORCES_FOR(Real)                                                                                  \
-  template void compute_pair_forces<Real>(const ContactKernels &, const void *, const Particles<Real> &,            \
-                                          const PairList<Real> &, int);                                            \
-  template void compute_wall_forces<Real>(const ContactKernels &, const void *, const Particles<Real> &,            \
-                                          const WallContacts<Real> &, int);                                        \
-  template void compute_geometry_contacts<Real>(const GeometryKernels &, const void *, const Particles<Real> &,     \
+#define SPREADMAP_FORCES_FOR(Real)                                                                              \
+  template void compute_pair_forces<Real>(const ContactKernels &, const void *, const Particles<Real> &,        \
+                                          const PairList<Real> &, int);                                         \
+  template void compute_wall_forces<Real>(const ContactKernels &, const void *, const Particles<Real> &,        \
+                                          const WallContacts<Real> &, int);                                     \
+  template void compute_geometry_contacts<Real>(const GeometryKernels &, const void *, const Particles<Real> &, \
                                                 const WallContacts<Real> &, int);
 SPREADMAP_FORCES_FOR(double)
 SPREADMAP_FORCES_FOR(float)

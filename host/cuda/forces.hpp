@@ -15,8 +15,8 @@ void compute_pair_forces(const ContactKernels &k, const void *law, const Particl
                          int device = 0);
 // Adds one wall's forces to p's accumulators and updates w.hist, as walls_f64 does.
 template <class Real>
-void compute_wall_forces(const ContactKernels &k, const void *law, const Particles<Real> &p, const WallContacts<Real> &w,
-                         int device = 0);
+void compute_wall_forces(const ContactKernels &k, const void *law, const Particles<Real> &p,
+                         const WallContacts<Real> &w, int device = 0);
 // Fills w's records for the geometry at time p.t, as contacts_f64 does (w.hist is left alone).
 template <class Real>
 void compute_geometry_contacts(const GeometryKernels &k, const void *geometry, const Particles<Real> &p,

@@ -14,7 +14,8 @@ namespace {
 void *entry_point(const LoadedPlugin &plugin, const char *symbol) {
   const std::string file = fs::absolute(plugin.file).string();
   void *handle = dlopen(file.c_str(), RTLD_LAZY | RTLD_NOLOAD);
-  if (!handle) throw PluginError("error: " + plugin.id() + ": " + file + " is not loaded; load it through the registry first");
+  if (!handle)
+    throw PluginError("error: " + plugin.id() + ": " + file + " is not loaded; load it through the registry first");
   void *entry = dlsym(handle, symbol);
   dlclose(handle);  // drops only the reference taken above
   if (!entry || !(plugin.descriptor->backends & SM_BACKEND_CUDA))
@@ -27,12 +28,13 @@ void *entry_point(const LoadedPlugin &plugin, const char *symbol) {
 void check_abi(const LoadedPlugin &plugin, const void *ops, std::uint32_t abi) {
   if (!ops) throw PluginError("error: " + plugin.id() + ": its CUDA entry point returned no table");
   if (abi != SPREADMAP_CUDA_ABI)
-    throw PluginError("error: " + plugin.id() + " has CUDA kernels of ABI " + std::to_string(abi) + ", this host needs " +
-                      std::to_string(SPREADMAP_CUDA_ABI) + ": rebuild it with this SDK");
+    throw PluginError("error: " + plugin.id() + " has CUDA kernels of ABI " + std::to_string(abi) +
+                      ", this host needs " + std::to_string(SPREADMAP_CUDA_ABI) + ": rebuild it with this SDK");
 }
 
 void raise(const std::string &id, const sm_error &err) {
-  throw RunFailure("error: " + id + " on the GPU: " + (err.text[0] ? err.text : "the kernel launch failed without saying why"));
+  throw RunFailure("error: " + id +
+                   " on the GPU: " + (err.text[0] ? err.text : "the kernel launch failed without saying why"));
 }
 
 sm_cuda_launch_v1 on(int device) { return {device, nullptr}; }
@@ -62,7 +64,8 @@ GeometryKernels spreader_kernels(const LoadedPlugin &plugin) {
 }
 
 template <class Real>
-void launch_pairs(const ContactKernels &k, const void *law, const Particles<Real> &p, const PairList<Real> &list, int device) {
+void launch_pairs(const ContactKernels &k, const void *law, const Particles<Real> &p, const PairList<Real> &list,
+                  int device) {
   sm_error err{0, {0}};
   const sm_cuda_launch_v1 at = on(device);
   int rc;
@@ -72,7 +75,8 @@ void launch_pairs(const ContactKernels &k, const void *law, const Particles<Real
 }
 
 template <class Real>
-void launch_walls(const ContactKernels &k, const void *law, const Particles<Real> &p, const WallContacts<Real> &w, int device) {
+void launch_walls(const ContactKernels &k, const void *law, const Particles<Real> &p, const WallContacts<Real> &w,
+                  int device) {
   sm_error err{0, {0}};
   const sm_cuda_launch_v1 at = on(device);
   int rc;
@@ -82,8 +86,8 @@ void launch_walls(const ContactKernels &k, const void *law, const Particles<Real
 }
 
 template <class Real>
-void launch_geometry(const GeometryKernels &k, const void *geometry, const Particles<Real> &p, const WallContacts<Real> &w,
-                     int device) {
+void launch_geometry(const GeometryKernels &k, const void *geometry, const Particles<Real> &p,
+                     const WallContacts<Real> &w, int device) {
   sm_error err{0, {0}};
   const sm_cuda_launch_v1 at = on(device);
   int rc;
@@ -92,10 +96,14 @@ void launch_geometry(const GeometryKernels &k, const void *geometry, const Parti
   if (rc) raise(k.id, err);
 }
 
-template void launch_pairs<double>(const ContactKernels &, const void *, const Particles<double> &, const PairList<double> &, int);
-template void launch_pairs<float>(const ContactKernels &, const void *, const Particles<float> &, const PairList<float> &, int);
-template void launch_walls<double>(const ContactKernels &, const void *, const Particles<double> &, const WallContacts<double> &, int);
-template void launch_walls<float>(const ContactKernels &, const void *, const Particles<float> &, const WallContacts<float> &, int);
+template void launch_pairs<double>(const ContactKernels &, const void *, const Particles<double> &,
+                                   const PairList<double> &, int);
+template void launch_pairs<float>(const ContactKernels &, const void *, const Particles<float> &,
+                                  const PairList<float> &, int);
+template void launch_walls<double>(const ContactKernels &, const void *, const Particles<double> &,
+                                   const WallContacts<double> &, int);
+template void launch_walls<float>(const ContactKernels &, const void *, const Particles<float> &,
+                                  const WallContacts<float> &, int);
 template void launch_geometry<double>(const GeometryKernels &, const void *, const Particles<double> &,
                                       const WallContacts<double> &, int);
 template void launch_geometry<float>(const GeometryKernels &, const void *, const Particles<float> &,

@@ -26,11 +26,13 @@ GeometryKernels spreader_kernels(const LoadedPlugin &plugin);
 // Enqueue one kernel on `device` (views hold device pointers; `law`/`geometry` is the bound instance
 // in host memory). They do not wait; synchronize() (device_array.hpp) does, and reports kernel faults.
 template <class Real>
-void launch_pairs(const ContactKernels &k, const void *law, const Particles<Real> &p, const PairList<Real> &list, int device = 0);
+void launch_pairs(const ContactKernels &k, const void *law, const Particles<Real> &p, const PairList<Real> &list,
+                  int device = 0);
 template <class Real>
-void launch_walls(const ContactKernels &k, const void *law, const Particles<Real> &p, const WallContacts<Real> &w, int device = 0);
+void launch_walls(const ContactKernels &k, const void *law, const Particles<Real> &p, const WallContacts<Real> &w,
+                  int device = 0);
 template <class Real>
-void launch_geometry(const GeometryKernels &k, const void *geometry, const Particles<Real> &p, const WallContacts<Real> &w,
-                     int device = 0);
+void launch_geometry(const GeometryKernels &k, const void *geometry, const Particles<Real> &p,
+                     const WallContacts<Real> &w, int device = 0);
 
 }  // namespace spreadmap::cuda

@@ -104,7 +104,8 @@ struct Bounds {
 };
 
 template <class Real>
-__global__ void bounds_kernel(const Real *x, const Real *y, const Real *z, const Real *r, std::uint32_t n, Bounds *out) {
+__global__ void bounds_kernel(const Real *x, const Real *y, const Real *z, const Real *r, std::uint32_t n,
+                              Bounds *out) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   const Real *c[3] = {x, y, z};
   for (int a = 0; a < 3; ++a) {
@@ -155,7 +156,8 @@ template <class Real> __global__ void list_count_kernel(ListArgs<Real> a, std::u
                                      ranges, static_cast<std::uint32_t *>(nullptr), 0u);
 }
 
-template <class Real> __global__ void list_fill_kernel(ListArgs<Real> a, const std::uint32_t *start, std::uint32_t *nbr) {
+template <class Real>
+__global__ void list_fill_kernel(ListArgs<Real> a, const std::uint32_t *start, std::uint32_t *nbr) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= a.n) return;
   const engine::CellRanges ranges = engine::neighbour_ranges(a.grid, a.cell[i], a.cell_start);
@@ -181,9 +183,7 @@ __global__ void after_build_kernel(const Real *x, const Real *y, const Real *z, 
 }
 
 // A plane's dense wall records: overlap (0 when apart), its normal and velocity.
-template <class Real> struct PlaneArgs {
-  Real point[3], normal[3], velocity[3];
-};
+template <class Real> struct PlaneArgs { Real point[3], normal[3], velocity[3]; };
 template <class Real>
 __global__ void plane_kernel(PlaneArgs<Real> pl, const Real *x, const Real *y, const Real *z, const Real *r,
                              std::uint32_t n, WallContacts<Real> w) {
@@ -199,7 +199,8 @@ template <class Real>
 __global__ void deep_pairs_kernel(ListArgs<Real> a, const std::uint32_t *start, const std::uint32_t *nbr, Real limit,
                                   Report *out) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
-  const unsigned bad = i < a.n ? engine::deep_overlaps(i, a.x, a.y, a.z, a.r, start, nbr, nullptr, a.len, a.per, limit) : 0u;
+  const unsigned bad =
+      i < a.n ? engine::deep_overlaps(i, a.x, a.y, a.z, a.r, start, nbr, nullptr, a.len, a.per, limit) : 0u;
   add_report(out, 0.0, 0, 0, bad);
 }
 
@@ -301,7 +302,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     if (!state.forces_valid) forces(state);
     const Real dt = Real(state.dt), half = Real(0.5 * state.dt);
     // first half kick and drift
-    const Report first = run_reported([&](Report *out) { launch_kick_drift(state, half, dt, out); }, "the first half kick");
+    const Report first =
+        run_reported([&](Report *out) { launch_kick_drift(state, half, dt, out); }, "the first half kick");
     if (first.nonfinite > 0) fail_on_host(state, [&] { state.report_bad_particle(); });
     bool rebuild_now = !state.list_valid;
     if (first.escaped > 0) {
@@ -324,8 +326,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     if (rebuild_now) rebuild(state);
     forces(state);
     const Real limit2 = Real(state.speed_limit * state.speed_limit);  // as the CPU rounds it
-    const Report second = run_reported([&](Report *out) { launch_kick_check(state, half, limit2, out); },
-                                       "the second half kick");
+    const Report second =
+        run_reported([&](Report *out) { launch_kick_check(state, half, limit2, out); }, "the second half kick");
     if (second.bad > 0) fail_on_host(state, [&] { state.report_bad_particle(); });
     if (state.step % settings.check_every == 0) {
       const Report deep = run_reported([&](Report *out) { launch_deep(state, out); }, "the overlap check");
@@ -361,10 +363,11 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   engine::KickDrift<Real> kick_view(State &state, Real half, Real dt) {
     auto &p = state.particles;
     const auto &d = state.domain;
-    engine::KickDrift<Real> k{col(p.x), col(p.y), col(p.z), col(p.vx), col(p.vy), col(p.vz), col(p.fx), col(p.fy),
-                              col(p.fz), col(p.wx), col(p.wy), col(p.wz), col(p.tx), col(p.ty), col(p.tz), col(p.x0),
-                              col(p.y0), col(p.z0), col(p.inv_m), col(p.inv_i), col(p.mobile), half, dt, {}, {}, {},
-                              {}, {}, state.rotate, false};
+    engine::KickDrift<Real> k{col(p.x),     col(p.y),  col(p.z),  col(p.vx), col(p.vy),    col(p.vz),    col(p.fx),
+                              col(p.fy),    col(p.fz), col(p.wx), col(p.wy), col(p.wz),    col(p.tx),    col(p.ty),
+                              col(p.tz),    col(p.x0), col(p.y0), col(p.z0), col(p.inv_m), col(p.inv_i), col(p.mobile),
+                              half,         dt,        {},        {},        {},           {},           {},
+                              state.rotate, false};
     for (int a = 0; a < 3; ++a) {
       k.g[a] = Real(state.settings.gravity[a]);
       k.lo[a] = Real(d.lo[a]);
@@ -378,22 +381,25 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   void launch_kick_drift(State &state, Real half, Real dt, Report *out) {
     const engine::KickDrift<Real> k = kick_view(state, half, dt);
     if (n_ == 0) return;
-    engine::with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate>() {
-      kick_drift_kernel<Real, PX, PY, PZ, Rotate><<<blocks_for(n_), block_size>>>(k, n_, out);
-    }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
+    engine::with_flags(
+        [&]<bool PX, bool PY, bool PZ, bool Rotate>() {
+          kick_drift_kernel<Real, PX, PY, PZ, Rotate><<<blocks_for(n_), block_size>>>(k, n_, out);
+        },
+        k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
   }
   void launch_kick_check(State &state, Real half, Real limit2, Report *out) {
     const engine::KickDrift<Real> k = kick_view(state, half, Real(state.dt));
     if (n_ == 0) return;
-    engine::with_flags([&]<bool Rotate>() { kick_check_kernel<Real, Rotate><<<blocks_for(n_), block_size>>>(k, limit2, n_, out); },
-                       k.rotate);
+    engine::with_flags(
+        [&]<bool Rotate>() { kick_check_kernel<Real, Rotate><<<blocks_for(n_), block_size>>>(k, limit2, n_, out); },
+        k.rotate);
   }
 
   ListArgs<Real> list_args(State &state) {
     auto &p = state.particles;
     const auto &d = state.domain;
-    ListArgs<Real> a{col(p.x), col(p.y), col(p.z), col(p.r), grid_, cell_sorted_.data(), cell_start_.data(), {},
-                     Real(state.skin), {}, n_};
+    ListArgs<Real> a{col(p.x),           col(p.y), col(p.z),         col(p.r), grid_, cell_sorted_.data(),
+                     cell_start_.data(), {},       Real(state.skin), {},       n_};
     for (int q = 0; q < 3; ++q) a.len[q] = Real(d.length(q)), a.per[q] = d.periodic[q];
     return a;
   }
@@ -405,7 +411,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     deep_pairs_kernel<Real><<<blocks_for(n_), block_size>>>(list_args(state), start_.data(), nbr_.data(), limit, out);
     std::size_t s = 0;
     for (auto &pl : state.planes) {
-      if (pl.wall.active) deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(p.r), limit, n_, out);
+      if (pl.wall.active)
+        deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(p.r), limit, n_, out);
       ++s;
     }
     for (std::size_t g = 0; g < state.geometries.size(); ++g, ++s)
@@ -435,19 +442,21 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     const double reach = 2 * from_ordered(b.r_max) + state.skin;
     for (int a = 0; a < 3; ++a)
       if (d.periodic[a] && d.length(a) < 2 * reach)
-        throw engine::SetupError("domain: the periodic length along " + std::string(1, "xyz"[a]) +
-                                 " must be at least twice the largest diameter + skin; widen the domain or lower the skin");
+        throw engine::SetupError(
+            "domain: the periodic length along " + std::string(1, "xyz"[a]) +
+            " must be at least twice the largest diameter + skin; widen the domain or lower the skin");
     grid_ = engine::make_cell_grid<Real>(d, lo, hi, reach, n_);
     const std::size_t cells = grid_.count();
 
     // a stable sort by cell: the permutation of the CPU's stable counting sort
     cell_.resize(n_), cell_sorted_.resize(n_), perm_in_.resize(n_), perm_.resize(n_);
-    cell_kernel<Real><<<blocks_for(n_), block_size>>>(grid_, col(p.x), col(p.y), col(p.z), n_, cell_.data(), perm_in_.data());
+    cell_kernel<Real>
+        <<<blocks_for(n_), block_size>>>(grid_, col(p.x), col(p.y), col(p.z), n_, cell_.data(), perm_in_.data());
     int bits = 1;
     while (bits < 32 && (std::size_t(1) << bits) < cells) ++bits;
     std::size_t temp_bytes = 0;
-    ok(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, cell_.data(), cell_sorted_.data(), perm_in_.data(), perm_.data(),
-                                       int(n_), 0, bits),
+    ok(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, cell_.data(), cell_sorted_.data(), perm_in_.data(),
+                                       perm_.data(), int(n_), 0, bits),
        "sizing the sort by cell");
     temp_.resize(temp_bytes);
     ok(cub::DeviceRadixSort::SortPairs(temp_.data(), temp_bytes, cell_.data(), cell_sorted_.data(), perm_in_.data(),
@@ -485,8 +494,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       carry_kernel<Real><<<blocks_for(n_), block_size>>>(icol(p.list_index), std::uint32_t(old_n), start_.data(),
                                                          nbr_.data(), hist_.data(), old_start_.data(), old_nbr_.data(),
                                                          old_hist_.data(), history_, n_);
-    after_build_kernel<Real><<<blocks_for(n_), block_size>>>(col(p.x), col(p.y), col(p.z), col(p.x0), col(p.y0), col(p.z0),
-                                                             icol(p.list_index), n_);
+    after_build_kernel<Real><<<blocks_for(n_), block_size>>>(col(p.x), col(p.y), col(p.z), col(p.x0), col(p.y0),
+                                                             col(p.z0), icol(p.list_index), n_);
     ok(cudaGetLastError(), "rebuilding the neighbour list");
   }
 
@@ -515,9 +524,9 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     for (std::vector<Real> *c : {&p.fx, &p.fy, &p.fz, &p.tx, &p.ty, &p.tz})
       ok(cudaMemset(col(*c), 0, std::size_t(n_) * sizeof(Real)), "clearing the force accumulators");
     const auto &d = state.domain;
-    Particles<Real> v{n_, col(p.x), col(p.y), col(p.z), col(p.vx), col(p.vy), col(p.vz), col(p.wx), col(p.wy),
-                      col(p.wz), col(p.r), col(p.m), col(p.fx), col(p.fy), col(p.fz), col(p.tx), col(p.ty), col(p.tz),
-                      {}, {}, {}, Real(state.dt), Real(state.time)};
+    Particles<Real> v{n_,        col(p.x),  col(p.y), col(p.z), col(p.vx), col(p.vy),      col(p.vz),       col(p.wx),
+                      col(p.wy), col(p.wz), col(p.r), col(p.m), col(p.fx), col(p.fy),      col(p.fz),       col(p.tx),
+                      col(p.ty), col(p.tz), {},       {},       {},        Real(state.dt), Real(state.time)};
     for (int a = 0; a < 3; ++a) {
       v.box_lo[a] = Real(d.lo[a]);
       v.box_hi[a] = Real(d.hi[a]);
@@ -572,8 +581,9 @@ template <class Real>
 std::unique_ptr<engine::StepBackend<Real>> make_resident_stepper(const engine::Simulation<Real> &sim, ResidentLaws laws,
                                                                  int device) {
   if (sim.settings().sleep)
-    throw InputError("error: scene.time.sleep: sleeping particles are not on the GPU backend yet; turn time.sleep off "
-                     "or set scene.backend: cpu");
+    throw InputError(
+        "error: scene.time.sleep: sleeping particles are not on the GPU backend yet; turn time.sleep off "
+        "or set scene.backend: cpu");
   if (laws.planes.size() != sim.plane_wall_count() || laws.geometries.size() != sim.geometry_count())
     throw InputError("error: the GPU backend needs the kernels of every plane wall and geometry of the scene");
   return std::make_unique<ResidentStepper<Real>>(std::move(laws), device);

@@ -48,9 +48,10 @@ class BinaryReader {
   }
   bool at_end() const { return pos_ == buf_.size(); }
   [[noreturn]] void fail(const std::string &what) const {
-    throw SetupError(fmt::format("{}: not a valid checkpoint ({} at byte {}); it may be truncated or from another "
-                                 "version: delete it to start the case afresh",
-                                 name_, what, pos_));
+    throw SetupError(
+        fmt::format("{}: not a valid checkpoint ({} at byte {}); it may be truncated or from another "
+                    "version: delete it to start the case afresh",
+                    name_, what, pos_));
   }
 
  private:

@@ -76,23 +76,24 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   if (r.value<std::uint32_t>() != format_version) r.fail("unknown format version");
   const auto real_size = r.value<std::uint32_t>();
   if (real_size != sizeof(Real))
-    throw SetupError(fmt::format("{}: the checkpoint was written in {} precision, this run uses {}; resume with the "
-                                 "same precision",
-                                 path.string(), real_size == 4 ? "float" : "double",
-                                 sizeof(Real) == 4 ? "float" : "double"));
+    throw SetupError(
+        fmt::format("{}: the checkpoint was written in {} precision, this run uses {}; resume with the "
+                    "same precision",
+                    path.string(), real_size == 4 ? "float" : "double", sizeof(Real) == 4 ? "float" : "double"));
   const auto n = r.value<std::uint64_t>();
   const auto n_planes = r.value<std::uint32_t>(), n_geometries = r.value<std::uint32_t>();
   if (n_planes != state_.planes.size() || n_geometries != state_.geometries.size())
-    throw SetupError(fmt::format("{}: the checkpoint has {} plane walls and {} geometries, this scene has {} and {}; "
-                                 "add the same walls and geometries before loading",
-                                 path.string(), n_planes, n_geometries, state_.planes.size(),
-                                 state_.geometries.size()));
+    throw SetupError(
+        fmt::format("{}: the checkpoint has {} plane walls and {} geometries, this scene has {} and {}; "
+                    "add the same walls and geometries before loading",
+                    path.string(), n_planes, n_geometries, state_.planes.size(), state_.geometries.size()));
   auto check_history = [&](std::uint32_t expected, const std::string &what) {
     const auto h = r.value<std::uint32_t>();
     if (h != expected)
-      throw SetupError(fmt::format("{}: {} keeps {} history values per contact in the checkpoint but {} in this "
-                                   "scene; resume with the same contact laws",
-                                   path.string(), what, h, expected));
+      throw SetupError(
+          fmt::format("{}: {} keeps {} history values per contact in the checkpoint but {} in this "
+                      "scene; resume with the same contact laws",
+                      path.string(), what, h, expected));
   };
   check_history(state_.pair_law.ops->history, "the particle-particle law");
   for (const auto &pl : state_.planes) check_history(pl.slot.history, "plane wall '" + pl.wall.name + "'");

@@ -41,7 +41,8 @@ std::vector<Field> split(std::string_view line) {
   std::size_t begin = 0;
   while (true) {
     const std::size_t comma = line.find(',', begin);
-    const std::string_view raw = line.substr(begin, comma == std::string_view::npos ? std::string_view::npos : comma - begin);
+    const std::string_view raw =
+        line.substr(begin, comma == std::string_view::npos ? std::string_view::npos : comma - begin);
     std::size_t lead = 0;
     while (lead < raw.size() && std::isspace(static_cast<unsigned char>(raw[lead]))) ++lead;
     out.push_back({trim(raw), begin + lead + 1});
@@ -62,8 +63,8 @@ ParticleSet read_particles_csv(const std::filesystem::path &path) {
   std::vector<int> slot;  // per CSV column: index into `known`
   bool have_header = false;
   ParticleSet s;
-  std::array<std::vector<double> *, 11> columns = {&s.x, &s.y, &s.z, &s.radius, &s.vx, &s.vy,
-                                                   &s.vz, &s.wx, &s.wy, &s.wz, &s.mass};
+  std::array<std::vector<double> *, 11> columns = {&s.x,  &s.y,  &s.z,  &s.radius, &s.vx,  &s.vy,
+                                                   &s.vz, &s.wx, &s.wy, &s.wz,     &s.mass};
   std::array<bool, 12> present{};
   while (std::getline(in, line)) {
     ++line_no;
@@ -76,9 +77,10 @@ ParticleSet read_particles_csv(const std::filesystem::path &path) {
         const std::string name = lower(f.text);
         const auto it = std::find(known.begin(), known.end(), name);
         if (it == known.end())
-          throw SetupError(fmt::format("{}:{}:{}: unknown column '{}'; allowed: x, y, z, radius (required), vx, vy, vz, "
-                                       "wx, wy, wz, mass, id",
-                                       file, line_no, f.column, f.text));
+          throw SetupError(
+              fmt::format("{}:{}:{}: unknown column '{}'; allowed: x, y, z, radius (required), vx, vy, vz, "
+                          "wx, wy, wz, mass, id",
+                          file, line_no, f.column, f.text));
         const int k = static_cast<int>(it - known.begin());
         if (present[k])
           throw SetupError(fmt::format("{}:{}:{}: column '{}' appears twice", file, line_no, f.column, f.text));

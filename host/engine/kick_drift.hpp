@@ -84,13 +84,19 @@ template <class Real> struct Drifted {
 // Drift of particle i after its first half kick: the accumulators cleared (used up), x += dt v,
 // wrapped along periodic axes.
 template <class Real, bool PX, bool PY, bool PZ> SM_HD Drifted<Real> drift(const KickDrift<Real> &k, long long i) {
-  k.fx[i] = 0; k.fy[i] = 0; k.fz[i] = 0;
-  k.tx[i] = 0; k.ty[i] = 0; k.tz[i] = 0;
+  k.fx[i] = 0;
+  k.fy[i] = 0;
+  k.fz[i] = 0;
+  k.tx[i] = 0;
+  k.ty[i] = 0;
+  k.tz[i] = 0;
   std::uint32_t out = 0;
   const Real px = drift_axis<Real, PX>(k.x[i], k.vx[i], k.dt, k.lo[0], k.hi[0], k.len[0], out);
   const Real py = drift_axis<Real, PY>(k.y[i], k.vy[i], k.dt, k.lo[1], k.hi[1], k.len[1], out);
   const Real pz = drift_axis<Real, PZ>(k.z[i], k.vz[i], k.dt, k.lo[2], k.hi[2], k.len[2], out);
-  k.x[i] = px; k.y[i] = py; k.z[i] = pz;
+  k.x[i] = px;
+  k.y[i] = py;
+  k.z[i] = pz;
   const Real dx = moved_axis<Real, PX>(px, k.x0[i], k.len[0]), dy = moved_axis<Real, PY>(py, k.y0[i], k.len[1]),
              dz = moved_axis<Real, PZ>(pz, k.z0[i], k.len[2]);
   const std::uint32_t finite = ((px - px) == 0) & ((py - py) == 0) & ((pz - pz) == 0);  // inf - inf is NaN
@@ -99,8 +105,7 @@ template <class Real, bool PX, bool PY, bool PZ> SM_HD Drifted<Real> drift(const
 
 // Is particle i (after its second half kick) faster than sqrt(limit2), or is its velocity or spin
 // not finite?
-template <class Real>
-SM_HD std::uint32_t too_fast(Real vx, Real vy, Real vz, Real wx, Real wy, Real wz, Real limit2) {
+template <class Real> SM_HD std::uint32_t too_fast(Real vx, Real vy, Real vz, Real wx, Real wy, Real wz, Real limit2) {
   const Real v2 = vx * vx + vy * vy + vz * vz;
   const Real w2 = wx * wx + wy * wy + wz * wz;
   return (!(v2 <= limit2) | !((w2 - w2) == 0)) ? 1u : 0u;  // NaN fails the comparison; inf - inf is NaN
@@ -170,13 +175,21 @@ std::uint32_t kick_check_drift_range(const KickDrift<Real> &k, Real limit2, long
     Real wx = k.wx[i], wy = k.wy[i], wz = k.wz[i];
     Real bx = 0, by = 0, bz = 0;  // angular acceleration
     if constexpr (Rotate) {
-      bx = k.tx[i] * k.inv_i[i]; by = k.ty[i] * k.inv_i[i]; bz = k.tz[i] * k.inv_i[i];
-      wx = wx + h * bx; wy = wy + h * by; wz = wz + h * bz;
+      bx = k.tx[i] * k.inv_i[i];
+      by = k.ty[i] * k.inv_i[i];
+      bz = k.tz[i] * k.inv_i[i];
+      wx = wx + h * bx;
+      wy = wy + h * by;
+      wz = wz + h * bz;
     }
     bad += too_fast(vx, vy, vz, wx, wy, wz, limit2);
-    k.vx[i] = vx + h * ax; k.vy[i] = vy + h * ay; k.vz[i] = vz + h * az;
+    k.vx[i] = vx + h * ax;
+    k.vy[i] = vy + h * ay;
+    k.vz[i] = vz + h * az;
     if constexpr (Rotate) {
-      k.wx[i] = wx + h * bx; k.wy[i] = wy + h * by; k.wz[i] = wz + h * bz;
+      k.wx[i] = wx + h * bx;
+      k.wy[i] = wy + h * by;
+      k.wz[i] = wz + h * bz;
     }
     tally.add(drift<Real, PX, PY, PZ>(k, i));
   }
@@ -195,22 +208,24 @@ template <bool... Fixed, class F, class... Rest> void with_flags(F &&f, bool fir
 
 // Second half kick of particles [begin, end); returns how many are faster than sqrt(limit2) or have
 // a non-finite velocity or spin.
-template <class Real>
-std::uint32_t kick_check(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
+template <class Real> std::uint32_t kick_check(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
   std::uint32_t bad = 0;
-  with_flags([&]<bool Rotate, bool Sleep>() {
-    with_simd([&] { bad = detail::kick_check_range<Real, Rotate, Sleep>(k, limit2, begin, end); });
-  },
-             k.rotate, k.sleeping);
+  with_flags(
+      [&]<bool Rotate, bool Sleep>() {
+        with_simd([&] { bad = detail::kick_check_range<Real, Rotate, Sleep>(k, limit2, begin, end); });
+      },
+      k.rotate, k.sleeping);
   return bad;
 }
 
 // First half kick and drift of particles [begin, end); adds to `result`.
 template <class Real>
 void kick_drift(const KickDrift<Real> &k, long long begin, long long end, KickDriftResult<Real> &result) {
-  with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>() {
-    with_simd([&] { detail::kick_drift_range<Real, PX, PY, PZ, Rotate, Sleep>(k, begin, end, result); });
-  }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate, k.sleeping);
+  with_flags(
+      [&]<bool PX, bool PY, bool PZ, bool Rotate, bool Sleep>() {
+        with_simd([&] { detail::kick_drift_range<Real, PX, PY, PZ, Rotate, Sleep>(k, begin, end, result); });
+      },
+      k.periodic[0], k.periodic[1], k.periodic[2], k.rotate, k.sleeping);
 }
 
 // The last step's second half kick and check, then this step's first half kick and drift, of
@@ -221,11 +236,12 @@ std::uint32_t kick_check_drift(const KickDrift<Real> &k, Real limit2, long long 
                                KickDriftResult<Real> &result) {
   assert(!k.sleeping && "a sleeping scene kicks in two passes");
   std::uint32_t bad = 0;
-  with_flags([&]<bool PX, bool PY, bool PZ, bool Rotate>() {
-    with_simd([&] {
-      bad = detail::kick_check_drift_range<Real, PX, PY, PZ, Rotate>(k, limit2, begin, end, result);
-    });
-  }, k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
+  with_flags(
+      [&]<bool PX, bool PY, bool PZ, bool Rotate>() {
+        with_simd(
+            [&] { bad = detail::kick_check_drift_range<Real, PX, PY, PZ, Rotate>(k, limit2, begin, end, result); });
+      },
+      k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
   return bad;
 }
 

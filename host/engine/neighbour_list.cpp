@@ -11,7 +11,6 @@
 
 namespace spreadmap::engine {
 
-
 template <class Real>
 void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid,
                                 const std::vector<std::uint32_t> &cell_start, const std::vector<std::uint32_t> &cell,
@@ -45,7 +44,8 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
       }
       const auto above = static_cast<std::uint32_t>(i + 1);
       std::size_t candidates = 0;
-      for (int q = 0; q < ranges.n; ++q) candidates += ranges.end[q] > above ? ranges.end[q] - std::max(ranges.begin[q], above) : 0;
+      for (int q = 0; q < ranges.n; ++q)
+        candidates += ranges.end[q] > above ? ranges.end[q] - std::max(ranges.begin[q], above) : 0;
       // Room for every candidate, then written without a branch (a kept neighbour advances the end).
       const std::size_t first = buf.size();
       buf.resize(first + candidates);

@@ -29,8 +29,8 @@ template <class Real> class NeighbourList {
   PairList<Real> view() {
     const bool once = has_mirror_ && !nbr.empty();
     if (!once) return {start.data(), nbr.data(), hist.data()};
-    return {start.data(),  nbr.data(),    hist.data(),    mirror.data(),    scratch.data(),
-            upper.data(),  pair_i.data(), pair_j.data(),  first_pair.data(), &balance_};
+    return {start.data(), nbr.data(),    hist.data(),   mirror.data(),     scratch.data(),
+            upper.data(), pair_i.data(), pair_j.data(), first_pair.data(), &balance_};
   }
   std::size_t entries() const { return nbr.size(); }
   // The particles whose pairs each of `threads` threads evaluates in the pair loop of pair_once.hpp
@@ -41,7 +41,12 @@ template <class Real> class NeighbourList {
     has_mirror_ = false;
     if (with_mirror && history == 0 && !nbr.empty()) find_mirrors();
   }
-  void clear() { start.clear(); nbr.clear(); hist.clear(); has_mirror_ = false; }
+  void clear() {
+    start.clear();
+    nbr.clear();
+    hist.clear();
+    has_mirror_ = false;
+  }
 
   // The list itself (public for checkpoints).
   std::vector<std::uint32_t> start, nbr;

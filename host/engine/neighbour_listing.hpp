@@ -50,8 +50,9 @@ SM_HD std::uint32_t deep_overlap(std::uint32_t i, std::uint32_t j, const Real *x
 // smaller diameter: deep_overlap over a flat sequence, the periodic axes fixed at compile time and no
 // branch, so that the loop vectorises (CPU only).
 template <bool PX, bool PY, bool PZ, class Real>
-std::uint32_t deep_overlap_pairs(const std::uint32_t *pair_i, const std::uint32_t *pair_j, std::uint64_t lo, std::uint64_t hi,
-                                 const Real *x, const Real *y, const Real *z, const Real *r, const Real len[3], Real limit) {
+std::uint32_t deep_overlap_pairs(const std::uint32_t *pair_i, const std::uint32_t *pair_j, std::uint64_t lo,
+                                 std::uint64_t hi, const Real *x, const Real *y, const Real *z, const Real *r,
+                                 const Real len[3], Real limit) {
   std::uint32_t bad = 0;
   for (std::uint64_t u = lo; u < hi; ++u) {
     const std::uint32_t i = pair_i[u], j = pair_j[u];
@@ -96,7 +97,8 @@ SM_HD void carry_history(std::uint32_t i, const std::uint32_t *list_index, std::
     if (oj == 0xffffffffu) continue;
     for (std::uint32_t ok = ob; ok < oe; ++ok) {
       if (old_nbr[ok] != oj) continue;
-      for (unsigned h = 0; h < history; ++h) hist[std::size_t(k) * history + h] = old_hist[std::size_t(ok) * history + h];
+      for (unsigned h = 0; h < history; ++h)
+        hist[std::size_t(k) * history + h] = old_hist[std::size_t(ok) * history + h];
       break;
     }
   }

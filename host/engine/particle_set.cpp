@@ -29,13 +29,20 @@ void ParticleSet::validate(const std::string &what) const {
   check_length(y, "y", n, false, what);
   check_length(z, "z", n, false, what);
   check_length(radius, "radius", n, false, what);
-  for (auto [c, name] : {std::pair{&vx, "vx"}, {&vy, "vy"}, {&vz, "vz"}, {&wx, "wx"}, {&wy, "wy"}, {&wz, "wz"},
-                         {&mass, "mass"}})
+  for (auto [c, name] :
+       {std::pair{&vx, "vx"}, {&vy, "vy"}, {&vz, "vz"}, {&wx, "wx"}, {&wy, "wy"}, {&wz, "wz"}, {&mass, "mass"}})
     check_length(*c, name, n, true, what);
   if (!id.empty() && id.size() != n)
     throw SetupError(fmt::format("{}: column 'id' has {} entries but x has {}", what, id.size(), n));
-  for (auto [c, name] : {std::pair{&x, "x"}, {&y, "y"}, {&z, "z"}, {&vx, "vx"}, {&vy, "vy"}, {&vz, "vz"},
-                         {&wx, "wx"}, {&wy, "wy"}, {&wz, "wz"}})
+  for (auto [c, name] : {std::pair{&x, "x"},
+                         {&y, "y"},
+                         {&z, "z"},
+                         {&vx, "vx"},
+                         {&vy, "vy"},
+                         {&vz, "vz"},
+                         {&wx, "wx"},
+                         {&wy, "wy"},
+                         {&wz, "wz"}})
     check_finite(*c, name, what, false);
   check_finite(radius, "radius", what, true);
   check_finite(mass, "mass", what, true);

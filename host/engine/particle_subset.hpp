@@ -23,23 +23,38 @@ template <class Real> class ParticleSubset {
               unsigned history) {
     index_ = &index;
     const std::size_t n = index.size();
-    for (auto *c : {&x, &y, &z, &vx, &vy, &vz, &wx, &wy, &wz, &r, &m, &fx, &fy, &fz, &tx, &ty, &tz, &overlap, &nx, &ny,
-                    &nz, &wvx, &wvy, &wvz})
+    for (auto *c : {&x,  &y,  &z,  &vx, &vy, &vz,      &wx, &wy, &wz, &r,   &m,   &fx,
+                    &fy, &fz, &tx, &ty, &tz, &overlap, &nx, &ny, &nz, &wvx, &wvy, &wvz})
       c->resize(n);
     history_ = history;
     wall_hist.resize(n * history);
     const std::uint32_t *idx = index.data();
-    parallel_for(this_thread_team(), n, [&](long long qq) {
-      const auto q = static_cast<std::size_t>(qq);
-      const std::uint32_t i = idx[q];
-      x[q] = p.x[i]; y[q] = p.y[i]; z[q] = p.z[i];
-      vx[q] = p.vx[i]; vy[q] = p.vy[i]; vz[q] = p.vz[i];
-      wx[q] = p.wx[i]; wy[q] = p.wy[i]; wz[q] = p.wz[i];
-      r[q] = p.r[i]; m[q] = p.m[i];
-      fx[q] = 0; fy[q] = 0; fz[q] = 0; tx[q] = 0; ty[q] = 0; tz[q] = 0;
-      overlap[q] = 0;
-      for (unsigned h = 0; h < history; ++h) wall_hist[q * history + h] = hist[std::size_t(i) * history + h];
-    }, n > parallel_from);
+    parallel_for(
+        this_thread_team(), n,
+        [&](long long qq) {
+          const auto q = static_cast<std::size_t>(qq);
+          const std::uint32_t i = idx[q];
+          x[q] = p.x[i];
+          y[q] = p.y[i];
+          z[q] = p.z[i];
+          vx[q] = p.vx[i];
+          vy[q] = p.vy[i];
+          vz[q] = p.vz[i];
+          wx[q] = p.wx[i];
+          wy[q] = p.wy[i];
+          wz[q] = p.wz[i];
+          r[q] = p.r[i];
+          m[q] = p.m[i];
+          fx[q] = 0;
+          fy[q] = 0;
+          fz[q] = 0;
+          tx[q] = 0;
+          ty[q] = 0;
+          tz[q] = 0;
+          overlap[q] = 0;
+          for (unsigned h = 0; h < history; ++h) wall_hist[q * history + h] = hist[std::size_t(i) * history + h];
+        },
+        n > parallel_from);
   }
 
   // The wall records of a plane: its overlap with each particle, one normal and one velocity.
@@ -47,8 +62,12 @@ template <class Real> class ParticleSubset {
     const std::uint32_t *idx = index_->data();
     for (std::size_t q = 0; q < x.size(); ++q) {
       overlap[q] = dense_overlap[idx[q]];
-      nx[q] = normal[0]; ny[q] = normal[1]; nz[q] = normal[2];
-      wvx[q] = velocity[0]; wvy[q] = velocity[1]; wvz[q] = velocity[2];
+      nx[q] = normal[0];
+      ny[q] = normal[1];
+      nz[q] = normal[2];
+      wvx[q] = velocity[0];
+      wvy[q] = velocity[1];
+      wvz[q] = velocity[2];
     }
   }
 
@@ -56,31 +75,56 @@ template <class Real> class ParticleSubset {
   Particles<Real> particles(const Particles<Real> &like) {
     Particles<Real> v = like;
     v.n = static_cast<std::uint32_t>(x.size());
-    v.x = x.data(); v.y = y.data(); v.z = z.data();
-    v.vx = vx.data(); v.vy = vy.data(); v.vz = vz.data();
-    v.wx = wx.data(); v.wy = wy.data(); v.wz = wz.data();
-    v.r = r.data(); v.m = m.data();
-    v.fx = fx.data(); v.fy = fy.data(); v.fz = fz.data();
-    v.tx = tx.data(); v.ty = ty.data(); v.tz = tz.data();
+    v.x = x.data();
+    v.y = y.data();
+    v.z = z.data();
+    v.vx = vx.data();
+    v.vy = vy.data();
+    v.vz = vz.data();
+    v.wx = wx.data();
+    v.wy = wy.data();
+    v.wz = wz.data();
+    v.r = r.data();
+    v.m = m.data();
+    v.fx = fx.data();
+    v.fy = fy.data();
+    v.fz = fz.data();
+    v.tx = tx.data();
+    v.ty = ty.data();
+    v.tz = tz.data();
     return v;
   }
   WallContacts<Real> walls() {
-    return {static_cast<std::uint32_t>(x.size()), overlap.data(), nx.data(), ny.data(), nz.data(),
-            wvx.data(), wvy.data(), wvz.data(), wall_hist.data()};
+    return {static_cast<std::uint32_t>(x.size()),
+            overlap.data(),
+            nx.data(),
+            ny.data(),
+            nz.data(),
+            wvx.data(),
+            wvy.data(),
+            wvz.data(),
+            wall_hist.data()};
   }
 
   // Adds the copy's forces and torques to the particles, and writes back their wall overlap and history.
   void scatter(ParticleArrays<Real> &p, std::vector<Real> &dense_overlap, std::vector<Real> &hist) const {
     const std::uint32_t *idx = index_->data();
     const unsigned history = history_;
-    parallel_for(this_thread_team(), x.size(), [&](long long qq) {
-      const auto q = static_cast<std::size_t>(qq);
-      const std::uint32_t i = idx[q];
-      p.fx[i] += fx[q]; p.fy[i] += fy[q]; p.fz[i] += fz[q];
-      p.tx[i] += tx[q]; p.ty[i] += ty[q]; p.tz[i] += tz[q];
-      dense_overlap[i] = overlap[q];
-      for (unsigned h = 0; h < history; ++h) hist[std::size_t(i) * history + h] = wall_hist[q * history + h];
-    }, x.size() > parallel_from);
+    parallel_for(
+        this_thread_team(), x.size(),
+        [&](long long qq) {
+          const auto q = static_cast<std::size_t>(qq);
+          const std::uint32_t i = idx[q];
+          p.fx[i] += fx[q];
+          p.fy[i] += fy[q];
+          p.fz[i] += fz[q];
+          p.tx[i] += tx[q];
+          p.ty[i] += ty[q];
+          p.tz[i] += tz[q];
+          dense_overlap[i] = overlap[q];
+          for (unsigned h = 0; h < history; ++h) hist[std::size_t(i) * history + h] = wall_hist[q * history + h];
+        },
+        x.size() > parallel_from);
   }
 
  private:

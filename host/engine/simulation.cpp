@@ -50,9 +50,10 @@ class SerialScope {
 void check_law(const ContactLaw &law, const std::string &what) {
   if (!law.ops || !law.ops->natural_frequency || !law.ops->damping_ratio || !law.ops->makes_torque ||
       !law.ops->pairs_f64 || !law.ops->pairs_f32 || !law.ops->walls_f64 || !law.ops->walls_f32)
-    throw SetupError(fmt::format("{}: the contact law has no complete ops table (a null function pointer); "
-                                 "bind a contact plugin built with this SDK",
-                                 what));
+    throw SetupError(
+        fmt::format("{}: the contact law has no complete ops table (a null function pointer); "
+                    "bind a contact plugin built with this SDK",
+                    what));
 }
 }  // namespace
 
@@ -62,19 +63,21 @@ Simulation<Real>::Simulation(const Domain &domain, ContactLaw pair_law, Settings
   check_law(pair_law, "particle-particle contact");
   for (int a = 0; a < 3; ++a)
     if (!(domain.hi[a] > domain.lo[a]) || !std::isfinite(domain.lo[a]) || !std::isfinite(domain.hi[a]))
-      throw SetupError(fmt::format("domain: axis {} spans [{}, {}] m; hi must be finite and greater than lo",
-                                   "xyz"[a], domain.lo[a], domain.hi[a]));
+      throw SetupError(fmt::format("domain: axis {} spans [{}, {}] m; hi must be finite and greater than lo", "xyz"[a],
+                                   domain.lo[a], domain.hi[a]));
   const Settings &s = state_.settings;
   if (!(s.dt >= 0) || !(s.dt_safety > 0) || !(s.dt_safety <= 1))
-    throw SetupError(fmt::format("settings: dt = {} s and dt_safety = {}: need dt >= 0 (0 = automatic) and 0 < "
-                                 "dt_safety <= 1",
-                                 s.dt, s.dt_safety));
+    throw SetupError(
+        fmt::format("settings: dt = {} s and dt_safety = {}: need dt >= 0 (0 = automatic) and 0 < "
+                    "dt_safety <= 1",
+                    s.dt, s.dt_safety));
   if (!(s.overlap_limit > 0) || s.check_every == 0)
     throw SetupError("settings: overlap_limit must be > 0 and check_every >= 1");
   if (s.sleep) {
     if (pair_law.ops->history > 0)
-      throw SetupError("settings: sleep needs a particle-particle law without history (the tangential springs of two "
-                       "sleeping spheres would be lost); turn sleep off or use a law without history");
+      throw SetupError(
+          "settings: sleep needs a particle-particle law without history (the tangential springs of two "
+          "sleeping spheres would be lost); turn sleep off or use a law without history");
     if (!(s.sleep_speed > 0) || s.sleep_checks == 0 || s.sleep_check_every == 0)
       throw SetupError("settings: sleep needs sleep_speed > 0, sleep_checks >= 1 and sleep_check_every >= 1");
   }
@@ -108,15 +111,22 @@ template <class Real> void Simulation<Real>::add_particles(ParticleSet set, doub
         pos[a] = d.lo[a] + (pos[a] - d.lo[a]) - std::floor((pos[a] - d.lo[a]) / l) * l;
         if (pos[a] >= d.hi[a]) pos[a] = d.lo[a];
       } else if (pos[a] < d.lo[a] || pos[a] >= d.hi[a]) {
-        throw SetupError(fmt::format("add_particles: particle {} (id {}) has {} = {} m, outside the open domain "
-                                     "axis [{}, {}) m; move it inside or make the axis periodic",
-                                     k, set.id[k], "xyz"[a], pos[a], d.lo[a], d.hi[a]));
+        throw SetupError(
+            fmt::format("add_particles: particle {} (id {}) has {} = {} m, outside the open domain "
+                        "axis [{}, {}) m; move it inside or make the axis periodic",
+                        k, set.id[k], "xyz"[a], pos[a], d.lo[a], d.hi[a]));
       }
     }
     const std::size_t i = old_n + k;
-    p.x[i] = Real(pos[0]); p.y[i] = Real(pos[1]); p.z[i] = Real(pos[2]);
-    p.vx[i] = Real(set.vx[k]); p.vy[i] = Real(set.vy[k]); p.vz[i] = Real(set.vz[k]);
-    p.wx[i] = Real(set.wx[k]); p.wy[i] = Real(set.wy[k]); p.wz[i] = Real(set.wz[k]);
+    p.x[i] = Real(pos[0]);
+    p.y[i] = Real(pos[1]);
+    p.z[i] = Real(pos[2]);
+    p.vx[i] = Real(set.vx[k]);
+    p.vy[i] = Real(set.vy[k]);
+    p.vz[i] = Real(set.vz[k]);
+    p.wx[i] = Real(set.wx[k]);
+    p.wy[i] = Real(set.wy[k]);
+    p.wz[i] = Real(set.wz[k]);
     p.r[i] = Real(set.radius[k]);
     p.m[i] = Real(set.mass[k]);
     p.inv_m[i] = Real(1.0 / set.mass[k]);
@@ -136,11 +146,20 @@ template <class Real> ParticleSet Simulation<Real>::state() const {
   sync_host();
   ParticleSet s;
   const std::size_t n = p.size();
-  auto copy = [n](const std::vector<Real> &from, std::vector<double> &to) { to.assign(from.begin(), from.begin() + n); };
-  copy(p.x, s.x); copy(p.y, s.y); copy(p.z, s.z);
-  copy(p.vx, s.vx); copy(p.vy, s.vy); copy(p.vz, s.vz);
-  copy(p.wx, s.wx); copy(p.wy, s.wy); copy(p.wz, s.wz);
-  copy(p.r, s.radius); copy(p.m, s.mass);
+  auto copy = [n](const std::vector<Real> &from, std::vector<double> &to) {
+    to.assign(from.begin(), from.begin() + n);
+  };
+  copy(p.x, s.x);
+  copy(p.y, s.y);
+  copy(p.z, s.z);
+  copy(p.vx, s.vx);
+  copy(p.vy, s.vy);
+  copy(p.vz, s.vz);
+  copy(p.wx, s.wx);
+  copy(p.wy, s.wy);
+  copy(p.wz, s.wz);
+  copy(p.r, s.radius);
+  copy(p.m, s.mass);
   s.id = p.id;
   return s;
 }
@@ -148,8 +167,8 @@ template <class Real> ParticleSet Simulation<Real>::state() const {
 template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wall) {
   host_changes();
   check_law(wall.law, "plane wall '" + wall.name + "'");
-  const double len = std::sqrt(wall.normal[0] * wall.normal[0] + wall.normal[1] * wall.normal[1] +
-                               wall.normal[2] * wall.normal[2]);
+  const double len =
+      std::sqrt(wall.normal[0] * wall.normal[0] + wall.normal[1] * wall.normal[1] + wall.normal[2] * wall.normal[2]);
   if (!(len > 0) || !std::isfinite(len))
     throw SetupError(fmt::format("plane wall '{}': normal ({}, {}, {}) must be a finite non-zero vector", wall.name,
                                  wall.normal[0], wall.normal[1], wall.normal[2]));
@@ -234,22 +253,24 @@ template <class Real> void Simulation<Real>::resolve_step() {
   const double crit = critical_dt();
   if (s.dt > 0) {
     if (s.dt > crit && !s.allow_unstable_dt)
-      throw SetupError(fmt::format("time step dt = {:.6g} s is above the critical step dt_crit = {:.6g} s of this "
-                                   "scene's contacts (velocity-Verlet with damping, in the densest packing); use "
-                                   "dt <= {:.6g} s, or dt: 0 for the automatic {:.3g} x dt_crit = {:.6g} s",
-                                   s.dt, crit, crit, s.dt_safety, s.dt_safety * crit));
+      throw SetupError(
+          fmt::format("time step dt = {:.6g} s is above the critical step dt_crit = {:.6g} s of this "
+                      "scene's contacts (velocity-Verlet with damping, in the densest packing); use "
+                      "dt <= {:.6g} s, or dt: 0 for the automatic {:.3g} x dt_crit = {:.6g} s",
+                      s.dt, crit, crit, s.dt_safety, s.dt_safety * crit));
     state_.dt = s.dt;
   } else {
     if (!std::isfinite(crit))
-      throw SetupError("cannot choose the time step automatically: no particles, or no contact law with a stiffness; "
-                       "add particles first or set dt");
+      throw SetupError(
+          "cannot choose the time step automatically: no particles, or no contact law with a stiffness; "
+          "add particles first or set dt");
     state_.dt = s.dt_safety * crit;
   }
   double d_max = 0, v_max = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
     d_max = std::max(d_max, 2.0 * double(p.r[i]));
-    v_max = std::max(v_max, std::sqrt(double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] +
-                                      double(p.vz[i]) * p.vz[i]));
+    v_max =
+        std::max(v_max, std::sqrt(double(p.vx[i]) * p.vx[i] + double(p.vy[i]) * p.vy[i] + double(p.vz[i]) * p.vz[i]));
   }
   state_.skin = s.skin > 0 ? s.skin : s.skin_fraction * d_max;
   // The fastest physical speed of the scene: free fall across the domain, moving surfaces, the
@@ -258,10 +279,12 @@ template <class Real> void Simulation<Real>::resolve_step() {
   const double diag = std::sqrt(d.length(0) * d.length(0) + d.length(1) * d.length(1) + d.length(2) * d.length(2));
   double v_phys = std::max(std::sqrt(2 * g * diag), v_max);
   for (const auto &pl : state_.planes)
-    v_phys = std::max(v_phys, std::sqrt(pl.wall.velocity[0] * pl.wall.velocity[0] + pl.wall.velocity[1] * pl.wall.velocity[1] +
-                                        pl.wall.velocity[2] * pl.wall.velocity[2]));
+    v_phys = std::max(v_phys,
+                      std::sqrt(pl.wall.velocity[0] * pl.wall.velocity[0] + pl.wall.velocity[1] * pl.wall.velocity[1] +
+                                pl.wall.velocity[2] * pl.wall.velocity[2]));
   for (const auto &ge : state_.geometries)
-    if (ge.geometry.ops->max_surface_speed) v_phys = std::max(v_phys, ge.geometry.ops->max_surface_speed(ge.geometry.self));
+    if (ge.geometry.ops->max_surface_speed)
+      v_phys = std::max(v_phys, ge.geometry.ops->max_surface_speed(ge.geometry.self));
   state_.speed_limit = s.speed_limit > 0 ? s.speed_limit : 10.0 * std::max(v_phys, 1e-3);
 
   bool torque = s.force_rotation || state_.pair_law.ops->makes_torque(state_.pair_law.self) != 0;
@@ -269,11 +292,13 @@ template <class Real> void Simulation<Real>::resolve_step() {
   for (const auto &ge : state_.geometries)
     torque = torque || ge.geometry.law.ops->makes_torque(ge.geometry.law.self) != 0;
   if (state_.rotate != torque || !step_resolved_) {
-    if (!torque) log("engine: no contact law makes torque: rotation is not integrated (angular velocities stay as given)");
+    if (!torque)
+      log("engine: no contact law makes torque: rotation is not integrated (angular velocities stay as given)");
   }
   state_.rotate = torque;
-  log(fmt::format("engine: dt = {:.4g} s = {:.3g} x dt_crit (dt_crit = {:.4g} s); skin = {:.3g} m; speed limit {:.3g} m/s",
-                  state_.dt, state_.dt / crit, crit, state_.skin, state_.speed_limit));
+  log(fmt::format(
+      "engine: dt = {:.4g} s = {:.3g} x dt_crit (dt_crit = {:.4g} s); skin = {:.3g} m; speed limit {:.3g} m/s",
+      state_.dt, state_.dt / crit, crit, state_.skin, state_.speed_limit));
   step_resolved_ = true;
   state_.list_valid = false;  // the skin may have changed
 }
@@ -298,25 +323,40 @@ template <class Real> void Simulation<Real>::rebuild_list() {
       Real mine[7] = {Real(inf), Real(inf), Real(inf), Real(-inf), Real(-inf), Real(-inf), 0};
       const auto [lo, hi] = team_share(n, team);
       for (std::size_t i = lo; i < hi; ++i) {
-        mine[0] = std::min(mine[0], p.x[i]); mine[1] = std::min(mine[1], p.y[i]); mine[2] = std::min(mine[2], p.z[i]);
-        mine[3] = std::max(mine[3], p.x[i]); mine[4] = std::max(mine[4], p.y[i]); mine[5] = std::max(mine[5], p.z[i]);
+        mine[0] = std::min(mine[0], p.x[i]);
+        mine[1] = std::min(mine[1], p.y[i]);
+        mine[2] = std::min(mine[2], p.z[i]);
+        mine[3] = std::max(mine[3], p.x[i]);
+        mine[4] = std::max(mine[4], p.y[i]);
+        mine[5] = std::max(mine[5], p.z[i]);
         mine[6] = std::max(mine[6], p.r[i]);
       }
 #pragma omp critical(spreadmap_bounds)
       {
-        lx = std::min(lx, mine[0]); ly = std::min(ly, mine[1]); lz = std::min(lz, mine[2]);
-        hx = std::max(hx, mine[3]); hy = std::max(hy, mine[4]); hz = std::max(hz, mine[5]);
+        lx = std::min(lx, mine[0]);
+        ly = std::min(ly, mine[1]);
+        lz = std::min(lz, mine[2]);
+        hx = std::max(hx, mine[3]);
+        hy = std::max(hy, mine[4]);
+        hz = std::max(hz, mine[5]);
         rm = std::max(rm, mine[6]);
       }
     });
-    lo[0] = lx; lo[1] = ly; lo[2] = lz; hi[0] = hx; hi[1] = hy; hi[2] = hz; r_max = rm;
+    lo[0] = lx;
+    lo[1] = ly;
+    lo[2] = lz;
+    hi[0] = hx;
+    hi[1] = hy;
+    hi[2] = hz;
+    r_max = rm;
   }
   const double reach = 2 * r_max + state_.skin;
   for (int a = 0; a < 3; ++a)
     if (state_.domain.periodic[a] && state_.domain.length(a) < 2 * reach)
-      throw SetupError(fmt::format("domain: the periodic length along {} ({:.4g} m) must be at least twice the largest "
-                                   "diameter + skin ({:.4g} m); widen the domain or lower the skin",
-                                   "xyz"[a], state_.domain.length(a), reach));
+      throw SetupError(
+          fmt::format("domain: the periodic length along {} ({:.4g} m) must be at least twice the largest "
+                      "diameter + skin ({:.4g} m); widen the domain or lower the skin",
+                      "xyz"[a], state_.domain.length(a), reach));
   const CellGrid<Real> grid = make_cell_grid<Real>(state_.domain, lo, hi, reach, n);
   const std::size_t n_cells = grid.count();
 
@@ -359,7 +399,9 @@ template <class Real> void Simulation<Real>::rebuild_list() {
   for (auto &ge : state_.geometries) find_near_geometry(ge);
   parallel_for(this_thread_team(), n, [&](long long i) {
     p.list_index[i] = static_cast<std::uint32_t>(i);
-    p.x0[i] = p.x[i]; p.y0[i] = p.y[i]; p.z0[i] = p.z[i];
+    p.x0[i] = p.x[i];
+    p.y0[i] = p.y[i];
+    p.z0[i] = p.z[i];
   });
 }
 
@@ -384,12 +426,23 @@ template <class Real> Particles<Real> Simulation<Real>::view() {
   auto &p = state_.particles;
   Particles<Real> v;
   v.n = static_cast<std::uint32_t>(p.size());
-  v.x = p.x.data(); v.y = p.y.data(); v.z = p.z.data();
-  v.vx = p.vx.data(); v.vy = p.vy.data(); v.vz = p.vz.data();
-  v.wx = p.wx.data(); v.wy = p.wy.data(); v.wz = p.wz.data();
-  v.r = p.r.data(); v.m = p.m.data();
-  v.fx = p.fx.data(); v.fy = p.fy.data(); v.fz = p.fz.data();
-  v.tx = p.tx.data(); v.ty = p.ty.data(); v.tz = p.tz.data();
+  v.x = p.x.data();
+  v.y = p.y.data();
+  v.z = p.z.data();
+  v.vx = p.vx.data();
+  v.vy = p.vy.data();
+  v.vz = p.vz.data();
+  v.wx = p.wx.data();
+  v.wy = p.wy.data();
+  v.wz = p.wz.data();
+  v.r = p.r.data();
+  v.m = p.m.data();
+  v.fx = p.fx.data();
+  v.fy = p.fy.data();
+  v.fz = p.fz.data();
+  v.tx = p.tx.data();
+  v.ty = p.ty.data();
+  v.tz = p.tz.data();
   for (int a = 0; a < 3; ++a) {
     v.box_lo[a] = Real(state_.domain.lo[a]);
     v.box_hi[a] = Real(state_.domain.hi[a]);
@@ -490,8 +543,12 @@ template <class Real> void Simulation<Real>::compute_forces() {
   const std::size_t n = p.size();
   if (!forces_zeroed_) {
     parallel_for(this_thread_team(), n, [&](long long i) {
-      p.fx[i] = 0; p.fy[i] = 0; p.fz[i] = 0;
-      p.tx[i] = 0; p.ty[i] = 0; p.tz[i] = 0;
+      p.fx[i] = 0;
+      p.fy[i] = 0;
+      p.fz[i] = 0;
+      p.tx[i] = 0;
+      p.ty[i] = 0;
+      p.tz[i] = 0;
     });
   }
   forces_zeroed_ = false;
@@ -559,7 +616,10 @@ template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot<Rea
   if (ge.slot.history) {  // far particles touch nothing: no history (the law cleared it when they left)
     std::size_t k = 0;
     for (std::size_t i = 0; i < n; ++i) {
-      if (k < ge.near.size() && ge.near[k] == i) { ++k; continue; }
+      if (k < ge.near.size() && ge.near[k] == i) {
+        ++k;
+        continue;
+      }
       std::fill_n(ge.slot.hist.begin() + i * ge.slot.history, ge.slot.history, Real(0));
     }
   }
@@ -612,10 +672,35 @@ template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot<Real> 
 // The step's kicks, drift and checks in the form the vectorised loops of kick_drift.hpp take.
 template <class Real> KickDrift<Real> Simulation<Real>::integration(Real half_dt, Real dt) {
   auto &p = state_.particles;
-  KickDrift<Real> k{p.x.data(), p.y.data(), p.z.data(), p.vx.data(), p.vy.data(), p.vz.data(),
-                    p.fx.data(), p.fy.data(), p.fz.data(), p.wx.data(), p.wy.data(), p.wz.data(),
-                    p.tx.data(), p.ty.data(), p.tz.data(), p.x0.data(), p.y0.data(), p.z0.data(),
-                    p.inv_m.data(), p.inv_i.data(), p.mobile.data(), half_dt, dt, {}, {}, {}, {}, {}, state_.rotate,
+  KickDrift<Real> k{p.x.data(),
+                    p.y.data(),
+                    p.z.data(),
+                    p.vx.data(),
+                    p.vy.data(),
+                    p.vz.data(),
+                    p.fx.data(),
+                    p.fy.data(),
+                    p.fz.data(),
+                    p.wx.data(),
+                    p.wy.data(),
+                    p.wz.data(),
+                    p.tx.data(),
+                    p.ty.data(),
+                    p.tz.data(),
+                    p.x0.data(),
+                    p.y0.data(),
+                    p.z0.data(),
+                    p.inv_m.data(),
+                    p.inv_i.data(),
+                    p.mobile.data(),
+                    half_dt,
+                    dt,
+                    {},
+                    {},
+                    {},
+                    {},
+                    {},
+                    state_.rotate,
                     asleep_ > 0};
   for (int a = 0; a < 3; ++a) {
     k.g[a] = Real(state_.settings.gravity[a]);
@@ -699,9 +784,12 @@ template <class Real> void Simulation<Real>::check_overlaps() {
     if (l.pair_i) {  // the flat sequence of upper pairs: one loop, vectorised
       const std::uint64_t pairs = l.first_pair[n];
       const auto [lo, hi] = team_share(pairs, team);
-      with_flags([&]<bool PX, bool PY, bool PZ>() {
-        with_simd([&] { mine = deep_overlap_pairs<PX, PY, PZ>(l.pair_i, l.pair_j, lo, hi, x, y, z, r, len, limit); });
-      }, per[0], per[1], per[2]);
+      with_flags(
+          [&]<bool PX, bool PY, bool PZ>() {
+            with_simd(
+                [&] { mine = deep_overlap_pairs<PX, PY, PZ>(l.pair_i, l.pair_j, lo, hi, x, y, z, r, len, limit); });
+          },
+          per[0], per[1], per[2]);
     } else {
       const auto [lo, hi] = team_share(n, team);
       for (std::size_t i = lo; i < hi; ++i)
@@ -875,8 +963,12 @@ template <class Real> void Simulation<Real>::update_sleep() {
       p.calm[i] = rest ? p.calm[i] + 1 : 0;
       if (p.calm[i] < needed) continue;
       p.mobile[i] = 0;
-      p.vx[i] = 0; p.vy[i] = 0; p.vz[i] = 0;
-      p.wx[i] = 0; p.wy[i] = 0; p.wz[i] = 0;
+      p.vx[i] = 0;
+      p.vy[i] = 0;
+      p.vz[i] = 0;
+      p.wx[i] = 0;
+      p.wy[i] = 0;
+      p.wz[i] = 0;
       ++mine;
     }
 #pragma omp atomic

@@ -163,7 +163,7 @@ template <class Real = double> class Simulation {
   std::vector<std::uint32_t> perm_, cell_, cell_sorted_, cell_start_, scratch_index_;
   std::vector<std::size_t> owner_cuts_;  // see share_like_pairs
   std::vector<Real> scratch_real_;
-  std::vector<Real> inflated_radius_;   // radii + margin for the geometry search
+  std::vector<Real> inflated_radius_;                     // radii + margin for the geometry search
   std::vector<std::vector<std::uint32_t>> thread_index_;  // per-thread index lists
   ParticleSubset<Real> subset_;
 };

@@ -19,7 +19,9 @@ double critical_dt(const ContactLaw &law, double m_eq, double r_eff, double fact
 }
 }  // namespace
 
-double contact_critical_dt(const ContactLaw &law, double m_eq, double r_eff) { return critical_dt(law, m_eq, r_eff, 1); }
+double contact_critical_dt(const ContactLaw &law, double m_eq, double r_eff) {
+  return critical_dt(law, m_eq, r_eff, 1);
+}
 
 double packing_critical_dt(const ContactLaw &law, double m_eq, double r_eff) {
   return critical_dt(law, m_eq, r_eff, packing_frequency_factor);

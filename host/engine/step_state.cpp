@@ -46,16 +46,18 @@ template <class Real> void StepState<Real>::report_bad_particle() const {
     const bool finite = std::isfinite(v) && std::isfinite(double(p.x[i]) + p.y[i] + p.z[i]) &&
                         std::isfinite(double(p.wx[i]) + p.wy[i] + p.wz[i]);
     if (!finite)
-      throw RunError(fmt::format("the state became NaN or infinite at t = {:.6g} s (step {}): particle id {} at "
-                                 "({:.4g}, {:.4g}, {:.4g}) m; the integration is unstable: use a smaller dt (or "
-                                 "dt_safety), or check the contact parameters for a law that returns NaN",
-                                 time, step, p.id[i], double(p.x[i]), double(p.y[i]), double(p.z[i])));
+      throw RunError(
+          fmt::format("the state became NaN or infinite at t = {:.6g} s (step {}): particle id {} at "
+                      "({:.4g}, {:.4g}, {:.4g}) m; the integration is unstable: use a smaller dt (or "
+                      "dt_safety), or check the contact parameters for a law that returns NaN",
+                      time, step, p.id[i], double(p.x[i]), double(p.y[i]), double(p.z[i])));
     if (!(v <= speed_limit))
-      throw RunError(fmt::format("kinetic energy explodes at t = {:.6g} s (step {}): particle id {} moves at {:.4g} m/s, "
-                                 "above the limit {:.4g} m/s (10 x the fastest physical speed of the scene); the "
-                                 "integration is unstable or contacts overlap too deeply: use a smaller dt (or "
-                                 "dt_safety) or stiffer contacts, or raise settings.speed_limit if this speed is real",
-                                 time, step, p.id[i], v, speed_limit));
+      throw RunError(
+          fmt::format("kinetic energy explodes at t = {:.6g} s (step {}): particle id {} moves at {:.4g} m/s, "
+                      "above the limit {:.4g} m/s (10 x the fastest physical speed of the scene); the "
+                      "integration is unstable or contacts overlap too deeply: use a smaller dt (or "
+                      "dt_safety) or stiffer contacts, or raise settings.speed_limit if this speed is real",
+                      time, step, p.id[i], v, speed_limit));
   }
   throw RunError(fmt::format("the state became invalid at t = {:.6g} s (step {}); use a smaller dt", time, step));
 }
@@ -65,9 +67,10 @@ template <class Real> void StepState<Real>::report_bad_particle() const {
 template <class Real> void StepState<Real>::report_deep_overlap(std::uint32_t bad_pairs) const {
   const auto &p = particles;
   const bool per[3] = {domain.periodic[0], domain.periodic[1], domain.periodic[2]};
-  auto advice = "the contacts are too soft for the speeds or loads of this scene, or dt is too large: stiffen the "
-                "contact law (e.g. a larger v_max or smaller overlap_max for hooke laws), lower the speeds, or use a "
-                "smaller dt; settings.overlap_limit sets the limit";
+  auto advice =
+      "the contacts are too soft for the speeds or loads of this scene, or dt is too large: stiffen the "
+      "contact law (e.g. a larger v_max or smaller overlap_max for hooke laws), lower the speeds, or use a "
+      "smaller dt; settings.overlap_limit sets the limit";
   if (bad_pairs > 0) {
     for (std::size_t i = 0; i < p.size(); ++i)
       for (std::uint32_t k = list.start[i]; k < list.start[i + 1]; ++k) {
@@ -78,20 +81,21 @@ template <class Real> void StepState<Real>::report_deep_overlap(std::uint32_t ba
         const double overlap = double(p.r[i]) + p.r[j] - std::sqrt(dx * dx + dy * dy + dz * dz);
         const double d = 2.0 * std::min(p.r[i], p.r[j]);
         if (overlap > settings.overlap_limit * d)
-          throw RunError(fmt::format("overlap too large at t = {:.6g} s (step {}): particles id {} and id {} overlap by "
-                                     "{:.4g} m = {:.3g} % of the diameter (limit {:.3g} %); {}",
-                                     time, step, p.id[i], p.id[j], overlap, 100 * overlap / d,
-                                     100 * settings.overlap_limit, advice));
+          throw RunError(fmt::format(
+              "overlap too large at t = {:.6g} s (step {}): particles id {} and id {} overlap by "
+              "{:.4g} m = {:.3g} % of the diameter (limit {:.3g} %); {}",
+              time, step, p.id[i], p.id[j], overlap, 100 * overlap / d, 100 * settings.overlap_limit, advice));
       }
   }
   auto wall_check = [&](const WallSlot<Real> &s, const std::string &name) {
     for (std::size_t i = 0; i < p.size(); ++i) {
       const double d = 2.0 * p.r[i];
       if (s.overlap[i] > settings.overlap_limit * d)
-        throw RunError(fmt::format("overlap too large at t = {:.6g} s (step {}): particle id {} overlaps {} by {:.4g} m "
-                                   "= {:.3g} % of its diameter (limit {:.3g} %); {}",
-                                   time, step, p.id[i], name, double(s.overlap[i]), 100 * s.overlap[i] / d,
-                                   100 * settings.overlap_limit, advice));
+        throw RunError(
+            fmt::format("overlap too large at t = {:.6g} s (step {}): particle id {} overlaps {} by {:.4g} m "
+                        "= {:.3g} % of its diameter (limit {:.3g} %); {}",
+                        time, step, p.id[i], name, double(s.overlap[i]), 100 * s.overlap[i] / d,
+                        100 * settings.overlap_limit, advice));
     }
   };
   for (const auto &pl : planes)

@@ -24,8 +24,7 @@ constexpr unsigned count_bits = 8, count_mask = (1u << count_bits) - 1;
 constexpr int most_threads = int(count_mask);
 }  // namespace
 
-ThreadTeam::ThreadTeam()
-    : view_{this, &ThreadTeam::size, &ThreadTeam::run, &ThreadTeam::barrier} {}
+ThreadTeam::ThreadTeam() : view_{this, &ThreadTeam::size, &ThreadTeam::run, &ThreadTeam::barrier} {}
 
 ThreadTeam::~ThreadTeam() {
   if (!workers_.empty()) post(1);
@@ -33,11 +32,14 @@ ThreadTeam::~ThreadTeam() {
 }
 
 int ThreadTeam::size(void *) { return std::min(max_team_size(), most_threads); }
-void ThreadTeam::run(void *self, void (*body)(void *, TeamSlot), void *arg) { static_cast<ThreadTeam *>(self)->run(body, arg); }
+void ThreadTeam::run(void *self, void (*body)(void *, TeamSlot), void *arg) {
+  static_cast<ThreadTeam *>(self)->run(body, arg);
+}
 void ThreadTeam::barrier(void *self) { static_cast<ThreadTeam *>(self)->barrier(); }
 
 template <class Done> void ThreadTeam::await(const std::atomic<unsigned> &a, Done done) {
-  const auto until = std::chrono::steady_clock::now() + std::chrono::nanoseconds(spin_ns_.load(std::memory_order_relaxed));
+  const auto until =
+      std::chrono::steady_clock::now() + std::chrono::nanoseconds(spin_ns_.load(std::memory_order_relaxed));
   for (int spins = 1;; ++spins) {
     if (done(a.load(std::memory_order_acquire))) return;
     relax();

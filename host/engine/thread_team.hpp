@@ -48,8 +48,8 @@ class ThreadTeam {
   const std::size_t *cuts_ = nullptr;
   std::size_t cuts_for_ = 0;
   int cuts_threads_ = 0;
-  int threads_ = 1;       // of the run in progress
-  bool running_ = false;  // a run of several threads is in progress
+  int threads_ = 1;                    // of the run in progress
+  bool running_ = false;               // a run of several threads is in progress
   std::atomic<long long> spin_ns_{0};  // how long await spins before it sleeps
   // A run's number and its thread count in one word (count in the low byte), so that a worker reads
   // both at once: one that is late can only have missed runs it had no part in.

@@ -20,12 +20,16 @@ void put(std::string &out, double v) {
 
 void vector_array(std::string &out, const char *name, const std::vector<double> &a, const std::vector<double> &b,
                   const std::vector<double> &c, std::size_t n) {
-  out += fmt::format("        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"ascii\">\n", name);
+  out +=
+      fmt::format("        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"ascii\">\n", name);
   for (std::size_t i = 0; i < n; ++i) {
     out += "          ";
-    put(out, a.empty() ? 0.0 : a[i]); out += ' ';
-    put(out, b.empty() ? 0.0 : b[i]); out += ' ';
-    put(out, c.empty() ? 0.0 : c[i]); out += '\n';
+    put(out, a.empty() ? 0.0 : a[i]);
+    out += ' ';
+    put(out, b.empty() ? 0.0 : b[i]);
+    out += ' ';
+    put(out, c.empty() ? 0.0 : c[i]);
+    out += '\n';
   }
   out += "        </DataArray>\n";
 }
@@ -54,9 +58,10 @@ void write_vtp(const std::filesystem::path &path, const ParticleSet &s, double t
   out += "      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" format=\"ascii\">";
   put(out, time);
   out += "</DataArray>\n    </FieldData>\n";
-  out += fmt::format("    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
-                     "NumberOfPolys=\"0\">\n",
-                     n, n);
+  out += fmt::format(
+      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+      "NumberOfPolys=\"0\">\n",
+      n, n);
   out += "      <Points>\n";
   vector_array(out, "Points", s.x, s.y, s.z, n);
   out += "      </Points>\n";
@@ -124,13 +129,13 @@ struct VtpText {
       if (p >= e) break;
       double v;
       auto res = std::from_chars(p, e, v);
-      if (res.ec != std::errc{}) fail(fmt::format("DataArray '{}' holds a value that is not a number near '{}'", array,
-                                                  std::string(p, std::min<std::size_t>(16, e - p))));
+      if (res.ec != std::errc{})
+        fail(fmt::format("DataArray '{}' holds a value that is not a number near '{}'", array,
+                         std::string(p, std::min<std::size_t>(16, e - p))));
       out.push_back(v);
       p = res.ptr;
     }
-    if (out.size() != count)
-      fail(fmt::format("DataArray '{}' has {} values, expected {}", array, out.size(), count));
+    if (out.size() != count) fail(fmt::format("DataArray '{}' has {} values, expected {}", array, out.size(), count));
     return out;
   }
 };
@@ -154,9 +159,16 @@ VtpContent read_vtp(const std::filesystem::path &path) {
   VtpContent c;
   const auto time = t.numbers("TIME", 1);
   c.time = time[0];
-  auto split = [n](const std::vector<double> &v, std::vector<double> &a, std::vector<double> &b, std::vector<double> &cc) {
-    a.resize(n); b.resize(n); cc.resize(n);
-    for (std::size_t i = 0; i < n; ++i) { a[i] = v[3 * i]; b[i] = v[3 * i + 1]; cc[i] = v[3 * i + 2]; }
+  auto split = [n](const std::vector<double> &v, std::vector<double> &a, std::vector<double> &b,
+                   std::vector<double> &cc) {
+    a.resize(n);
+    b.resize(n);
+    cc.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      a[i] = v[3 * i];
+      b[i] = v[3 * i + 1];
+      cc[i] = v[3 * i + 2];
+    }
   };
   ParticleSet &s = c.particles;
   split(t.numbers("Points", 3 * n), s.x, s.y, s.z);
@@ -172,8 +184,9 @@ VtpContent read_vtp(const std::filesystem::path &path) {
 }
 
 void write_pvd(const std::filesystem::path &path, const std::vector<SeriesEntry> &series) {
-  std::string out = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
-                    "  <Collection>\n";
+  std::string out =
+      "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+      "  <Collection>\n";
   for (const auto &e : series) {
     out += "    <DataSet timestep=\"";
     put(out, e.time);

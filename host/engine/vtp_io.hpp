@@ -22,7 +22,7 @@ struct VtpContent {
 VtpContent read_vtp(const std::filesystem::path &path);
 
 struct SeriesEntry {
-  double time;  // [s]
+  double time;       // [s]
   std::string file;  // relative to the .pvd file, e.g. "series/000012.vtp"
 };
 void write_pvd(const std::filesystem::path &path, const std::vector<SeriesEntry> &series);

@@ -16,8 +16,15 @@ template <class Real> struct WallSlot {
   unsigned history = 0;
   bool touched = false;  // some particle touched at the last evaluation
   WallContacts<Real> view(std::size_t n) {
-    return {static_cast<std::uint32_t>(n), overlap.data(), nx.data(), ny.data(), nz.data(),
-            vx.data(), vy.data(), vz.data(), hist.data()};
+    return {static_cast<std::uint32_t>(n),
+            overlap.data(),
+            nx.data(),
+            ny.data(),
+            nz.data(),
+            vx.data(),
+            vy.data(),
+            vz.data(),
+            hist.data()};
   }
   void resize(std::size_t n) {
     for (auto *c : {&overlap, &nx, &ny, &nz, &vx, &vy, &vz}) c->resize(n, Real(0));

@@ -25,13 +25,12 @@ struct PlaneWall {
   std::array<double, 3> velocity{0, 0, 0};  // [m/s]
   ContactLaw law;
   bool active = true;
-  std::string name = "plane";               // for messages
+  std::string name = "plane";  // for messages
 };
 
 // How deep a sphere (centre x, y, z, radius r) sinks into a plane through p with unit normal n:
 // > 0 touching. Host-device: both backends' plane contacts.
-template <class Real>
-SM_HD Real plane_overlap(const Real p[3], const Real n[3], Real x, Real y, Real z, Real r) {
+template <class Real> SM_HD Real plane_overlap(const Real p[3], const Real n[3], Real x, Real y, Real z, Real r) {
   return r - ((x - p[0]) * n[0] + (y - p[1]) * n[1] + (z - p[2]) * n[2]);
 }
 
@@ -39,7 +38,7 @@ SM_HD Real plane_overlap(const Real p[3], const Real n[3], Real x, Real y, Real 
 // touch. One loop without a branch: it vectorises.
 template <class Real>
 std::uint32_t plane_overlaps(const Real p[3], const Real n[3], const Real *x, const Real *y, const Real *z,
-                                           const Real *r, Real *overlap, std::size_t lo, std::size_t hi) {
+                             const Real *r, Real *overlap, std::size_t lo, std::size_t hi) {
   std::uint32_t touching = 0;
 #pragma GCC ivdep
   for (std::size_t i = lo; i < hi; ++i) {
@@ -57,8 +56,8 @@ struct GeometryWall {
   const sm_spreader_ops_v2 *ops = nullptr;
   const void *self = nullptr;
   ContactLaw law;
-  std::string name = "geometry";            // for messages: the plugin's kind/name
-  double time_shift = 0;                    // [s]
+  std::string name = "geometry";  // for messages: the plugin's kind/name
+  double time_shift = 0;          // [s]
 };
 
 }  // namespace spreadmap::engine

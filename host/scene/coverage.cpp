@@ -2,15 +2,16 @@
 
 #include <fmt/format.h>
 
-#include "scene/error.hpp"
+#include "scene/scene_error.hpp"
 
 namespace spreadmap::scene {
 
 LayerCoverage sampled_length_check(double solid_volume, double layer_thickness, double width, double required_length,
                                    double packing) {
   if (!(layer_thickness > 0) || !(width > 0) || !(packing > 0 && packing <= 1))
-    throw SceneError(fmt::format("sampled_length_check: thickness {} m and width {} m must be > 0 and packing {} in (0, 1]",
-                                 layer_thickness, width, packing));
+    throw SceneError(
+        fmt::format("sampled_length_check: thickness {} m and width {} m must be > 0 and packing {} in (0, 1]",
+                    layer_thickness, width, packing));
   const double length = solid_volume / (packing * layer_thickness * width);
   return {length, required_length, length >= required_length};
 }

@@ -17,7 +17,7 @@ struct LayerCoverage {
 // strip (the periodic width, or the spreader length); required_length [m]: from where spreading
 // starts to the far end of the sampled region. packing: solid fraction of the spread layer.
 // Throws SceneError for non-positive thickness, width or packing.
-LayerCoverage sampled_length_check(double solid_volume, double layer_thickness, double width,
-                                   double required_length, double packing = 0.6);
+LayerCoverage sampled_length_check(double solid_volume, double layer_thickness, double width, double required_length,
+                                   double packing = 0.6);
 
 }  // namespace spreadmap::scene

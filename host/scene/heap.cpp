@@ -18,8 +18,12 @@ constexpr double sphere_volume_factor = std::numbers::pi / 6.0;  // V = (pi/6) d
 class CellGrid {
  public:
   CellGrid(const Box &region, bool periodic_y, double cell, double top)
-      : x0_(region.lo[0]), y0_(region.lo[1]), z0_(region.lo[2]), width_(region.hi[1] - region.lo[1]),
-        cell_(cell), periodic_y_(periodic_y) {
+      : x0_(region.lo[0]),
+        y0_(region.lo[1]),
+        z0_(region.lo[2]),
+        width_(region.hi[1] - region.lo[1]),
+        cell_(cell),
+        periodic_y_(periodic_y) {
     nx_ = std::max(1L, static_cast<long>(std::ceil((region.hi[0] - x0_) / cell)));
     // Periodic: a whole number of cells no smaller than `cell` spans the strip exactly.
     ny_ = periodic_y ? std::max(1L, static_cast<long>(std::floor(width_ / cell)))
@@ -106,14 +110,16 @@ void check(const HeapSpec &spec) {
       throw SceneError(fmt::format("heap region: lo = {} m must be below hi = {} m along {}", spec.region.lo[a],
                                    spec.region.hi[a], "xyz"[a]));
   if ((spec.count > 0) == (spec.solid_volume > 0))
-    throw SceneError(fmt::format("heap: give either a particle count or a solid volume, not {} (count {}, volume {} m^3)",
-                                 spec.count > 0 ? "both" : "neither", spec.count, spec.solid_volume));
+    throw SceneError(
+        fmt::format("heap: give either a particle count or a solid volume, not {} (count {}, volume {} m^3)",
+                    spec.count > 0 ? "both" : "neither", spec.count, spec.solid_volume));
   if (spec.attempts_per_sphere == 0) throw SceneError("heap: attempts_per_sphere must be at least 1");
   spec.sizes.validate();
   const double d = spec.sizes.upper();
   const double span_x = spec.region.hi[0] - spec.region.lo[0], span_y = spec.region.hi[1] - spec.region.lo[1];
   if (span_x < d || span_y < d)
-    throw SceneError(fmt::format("heap region: {} m x {} m (x, y) cannot hold a sphere of diameter {} m", span_x, span_y, d));
+    throw SceneError(
+        fmt::format("heap region: {} m x {} m (x, y) cannot hold a sphere of diameter {} m", span_x, span_y, d));
 }
 
 }  // namespace
@@ -137,19 +143,23 @@ Heap insert_heap(const HeapSpec &spec) {
   const double largest = spec.sizes.upper(), width = box.hi[1] - box.lo[1];
   Heap heap;
   heap.top = std::min(box.hi[2], spec.max_top);
-  heap.x.reserve(n); heap.y.reserve(n); heap.z.reserve(n); heap.r.reserve(n);
+  heap.x.reserve(n);
+  heap.y.reserve(n);
+  heap.z.reserve(n);
+  heap.r.reserve(n);
   CellGrid grid(box, spec.periodic_y, largest, heap.top);
 
   auto grow = [&](std::size_t placed, double r) {
     if (heap.top >= spec.max_top) {
       const double box_volume = (box.hi[0] - box.lo[0]) * width * (heap.top - box.lo[2]);
       throw SceneError(fmt::format(
-          "heap: placed {} of {} spheres (diameters {:.4g} to {:.4g} m; the next has {:.4g} m) in x [{:.4g}, {:.4g}] m, "
+          "heap: placed {} of {} spheres (diameters {:.4g} to {:.4g} m; the next has {:.4g} m) in x [{:.4g}, {:.4g}] "
+          "m, "
           "y [{:.4g}, {:.4g}] m, z [{:.4g}, {:.4g}] m (solid fraction {:.3f} of that box, exclusions included); "
           "it is full and may not grow above max_top = {:.4g} m: enlarge the region, raise max_top or insert fewer "
           "particles (random sequential addition jams near a solid fraction of 0.38)",
-          placed, n, spec.sizes.lower(), largest, 2 * r, box.lo[0], box.hi[0], box.lo[1], box.hi[1], box.lo[2], heap.top,
-          heap.solid_volume / box_volume, spec.max_top));
+          placed, n, spec.sizes.lower(), largest, 2 * r, box.lo[0], box.hi[0], box.lo[1], box.hi[1], box.lo[2],
+          heap.top, heap.solid_volume / box_volume, spec.max_top));
     }
     heap.top = std::min(heap.top + largest, spec.max_top);
     grid.grow_to(heap.top);
@@ -170,7 +180,10 @@ Heap insert_heap(const HeapSpec &spec) {
       ++heap.attempts;
       if (!excluded(spec, x, y, z, r) && !grid.overlaps(x, y, z, r, heap)) {
         grid.add(static_cast<std::uint32_t>(i), x, y, z);
-        heap.x.push_back(x); heap.y.push_back(y); heap.z.push_back(z); heap.r.push_back(r);
+        heap.x.push_back(x);
+        heap.y.push_back(y);
+        heap.z.push_back(z);
+        heap.r.push_back(r);
         heap.solid_volume += sphere_volume_factor * diameters[i] * diameters[i] * diameters[i];
         break;
       }

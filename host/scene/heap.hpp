@@ -21,7 +21,7 @@
 #include <limits>
 #include <vector>
 
-#include "scene/error.hpp"
+#include "scene/scene_error.hpp"
 #include "scene/size_distribution.hpp"
 
 namespace spreadmap::scene {
@@ -38,17 +38,17 @@ struct CylinderY {
 };
 
 struct HeapSpec {
-  Box region;                           // x0..x1, y0..y1, z0..z1 (z1 may grow, see above) [m]
-  bool periodic_y = false;              // y0..y1 is a periodic strip
-  std::size_t count = 0;                // give count or solid_volume (exactly one non-zero)
-  double solid_volume = 0.0;            // powder volume (sum of sphere volumes) [m^3]
+  Box region;                 // x0..x1, y0..y1, z0..z1 (z1 may grow, see above) [m]
+  bool periodic_y = false;    // y0..y1 is a periodic strip
+  std::size_t count = 0;      // give count or solid_volume (exactly one non-zero)
+  double solid_volume = 0.0;  // powder volume (sum of sphere volumes) [m^3]
   SizeDistribution sizes;
   std::uint64_t seed = 1;
   std::vector<CylinderY> excluded_cylinders;  // no part of a sphere may lie inside these
   std::vector<Box> excluded_boxes;
   // Optional extra exclusion: returns true when a sphere (centre x, y, z, radius r) is not allowed.
   std::function<bool(double x, double y, double z, double r)> excluded;
-  std::size_t attempts_per_sphere = 20000;    // consecutive failures that mean "full"
+  std::size_t attempts_per_sphere = 20000;                   // consecutive failures that mean "full"
   double max_top = std::numeric_limits<double>::infinity();  // highest z1 the region may grow to [m]
 };
 

@@ -34,7 +34,8 @@ SizeDistribution SizeDistribution::monodisperse(double d) {
   return s;
 }
 
-SizeDistribution SizeDistribution::lognormal(double d50, double sigma, FractionBasis basis, double d_min, double d_max) {
+SizeDistribution SizeDistribution::lognormal(double d50, double sigma, FractionBasis basis, double d_min,
+                                             double d_max) {
   SizeDistribution s;
   s.kind = SizeKind::lognormal;
   s.d50 = d50;
@@ -45,7 +46,8 @@ SizeDistribution SizeDistribution::lognormal(double d50, double sigma, FractionB
   return s;
 }
 
-SizeDistribution SizeDistribution::table(std::vector<double> diameters, std::vector<double> fractions, FractionBasis basis) {
+SizeDistribution SizeDistribution::table(std::vector<double> diameters, std::vector<double> fractions,
+                                         FractionBasis basis) {
   SizeDistribution s;
   s.kind = SizeKind::table;
   s.diameters = std::move(diameters);
@@ -56,27 +58,34 @@ SizeDistribution SizeDistribution::table(std::vector<double> diameters, std::vec
 
 void SizeDistribution::validate() const {
   auto positive = [](double v, const char *what) {
-    if (!(v > 0) || !std::isfinite(v)) throw SceneError(fmt::format("size distribution: {} = {} must be a positive finite length in m", what, v));
+    if (!(v > 0) || !std::isfinite(v))
+      throw SceneError(fmt::format("size distribution: {} = {} must be a positive finite length in m", what, v));
   };
   switch (kind) {
-    case SizeKind::monodisperse: positive(diameter, "diameter"); break;
+    case SizeKind::monodisperse:
+      positive(diameter, "diameter");
+      break;
     case SizeKind::lognormal:
       positive(d50, "d50");
       if (!(sigma >= 0) || !(sigma < 3))
-        throw SceneError(fmt::format("size distribution: sigma = {} (standard deviation of ln d) must be in [0, 3)", sigma));
+        throw SceneError(
+            fmt::format("size distribution: sigma = {} (standard deviation of ln d) must be in [0, 3)", sigma));
       if (d_min < 0 || d_max < 0 || (d_min > 0 && d_max > 0 && !(d_min < d_max)))
-        throw SceneError(fmt::format("size distribution: truncation [d_min, d_max] = [{}, {}] m is not a range", d_min, d_max));
+        throw SceneError(
+            fmt::format("size distribution: truncation [d_min, d_max] = [{}, {}] m is not a range", d_min, d_max));
       if (sigma > 0 && (lower() >= number_median() || upper() <= number_median()))
         throw SceneError(fmt::format("size distribution: truncation [{}, {}] m must contain the number median {} m",
                                      lower(), upper(), number_median()));
       break;
     case SizeKind::table:
       if (diameters.empty() || diameters.size() != fractions.size())
-        throw SceneError(fmt::format("size distribution: the table needs as many fractions as diameters (got {} and {})",
-                                     diameters.size(), fractions.size()));
+        throw SceneError(
+            fmt::format("size distribution: the table needs as many fractions as diameters (got {} and {})",
+                        diameters.size(), fractions.size()));
       for (double d : diameters) positive(d, "a table diameter");
       for (double f : fractions)
-        if (!(f >= 0) || !std::isfinite(f)) throw SceneError(fmt::format("size distribution: fraction {} must be >= 0", f));
+        if (!(f >= 0) || !std::isfinite(f))
+          throw SceneError(fmt::format("size distribution: fraction {} must be >= 0", f));
       if (!(std::accumulate(fractions.begin(), fractions.end(), 0.0) > 0))
         throw SceneError("size distribution: the table's fractions sum to 0");
       break;
@@ -89,25 +98,32 @@ double SizeDistribution::number_median() const {
 
 double SizeDistribution::lower() const {
   switch (kind) {
-    case SizeKind::monodisperse: return diameter;
-    case SizeKind::lognormal: return d_min > 0 ? d_min : number_median() * std::exp(-3.0 * sigma);
-    case SizeKind::table: return *std::min_element(diameters.begin(), diameters.end());
+    case SizeKind::monodisperse:
+      return diameter;
+    case SizeKind::lognormal:
+      return d_min > 0 ? d_min : number_median() * std::exp(-3.0 * sigma);
+    case SizeKind::table:
+      return *std::min_element(diameters.begin(), diameters.end());
   }
   return diameter;
 }
 
 double SizeDistribution::upper() const {
   switch (kind) {
-    case SizeKind::monodisperse: return diameter;
-    case SizeKind::lognormal: return d_max > 0 ? d_max : number_median() * std::exp(3.0 * sigma);
-    case SizeKind::table: return *std::max_element(diameters.begin(), diameters.end());
+    case SizeKind::monodisperse:
+      return diameter;
+    case SizeKind::lognormal:
+      return d_max > 0 ? d_max : number_median() * std::exp(3.0 * sigma);
+    case SizeKind::table:
+      return *std::max_element(diameters.begin(), diameters.end());
   }
   return diameter;
 }
 
 double SizeDistribution::mean_sphere_volume() const {
   switch (kind) {
-    case SizeKind::monodisperse: return sphere_volume_factor * diameter * diameter * diameter;
+    case SizeKind::monodisperse:
+      return sphere_volume_factor * diameter * diameter * diameter;
     case SizeKind::lognormal: {
       const double m = number_median();
       if (sigma == 0) return sphere_volume_factor * m * m * m;
@@ -132,7 +148,9 @@ std::vector<double> SizeDistribution::sample(std::size_t n, Random &random) cons
   std::vector<double> d;
   d.reserve(n);
   switch (kind) {
-    case SizeKind::monodisperse: d.assign(n, diameter); break;
+    case SizeKind::monodisperse:
+      d.assign(n, diameter);
+      break;
     case SizeKind::lognormal: {
       const double m = number_median(), lo = lower(), hi = upper();
       while (d.size() < n) {
@@ -153,7 +171,8 @@ std::vector<double> SizeDistribution::sample(std::size_t n, Random &random) cons
         assigned += count[i];
         remainder.emplace_back(exact - static_cast<double>(count[i]), i);
       }
-      std::stable_sort(remainder.begin(), remainder.end(), [](const auto &a, const auto &b) { return a.first > b.first; });
+      std::stable_sort(remainder.begin(), remainder.end(),
+                       [](const auto &a, const auto &b) { return a.first > b.first; });
       for (std::size_t k = 0; assigned < n; ++k, ++assigned) ++count[remainder[k % remainder.size()].second];
       for (std::size_t i = 0; i < p.size(); ++i) d.insert(d.end(), count[i], diameters[i]);
       break;

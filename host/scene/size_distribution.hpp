@@ -12,8 +12,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "scene/error.hpp"
-#include "scene/random.hpp"
+#include "scene/scene_error.hpp"
+#include "spreadmap/random.hpp"
 
 namespace spreadmap::scene {
 
@@ -22,12 +22,12 @@ enum class FractionBasis { number, volume };
 
 struct SizeDistribution {
   SizeKind kind = SizeKind::monodisperse;
-  double diameter = 250e-6;                       // monodisperse [m]
-  double d50 = 250e-6;                            // lognormal median [m], by `basis`
-  double sigma = 0.0;                             // lognormal: standard deviation of ln d [-]
-  double d_min = 0.0, d_max = 0.0;                // lognormal truncation [m]; 0 = median * exp(-/+3 sigma)
-  FractionBasis basis = FractionBasis::number;    // of d50 (lognormal) or of fractions (table)
-  std::vector<double> diameters, fractions;       // table [m], [-]
+  double diameter = 250e-6;                     // monodisperse [m]
+  double d50 = 250e-6;                          // lognormal median [m], by `basis`
+  double sigma = 0.0;                           // lognormal: standard deviation of ln d [-]
+  double d_min = 0.0, d_max = 0.0;              // lognormal truncation [m]; 0 = median * exp(-/+3 sigma)
+  FractionBasis basis = FractionBasis::number;  // of d50 (lognormal) or of fractions (table)
+  std::vector<double> diameters, fractions;     // table [m], [-]
 
   static SizeDistribution monodisperse(double d);
   static SizeDistribution lognormal(double d50, double sigma, FractionBasis basis = FractionBasis::number,
@@ -37,10 +37,10 @@ struct SizeDistribution {
 
   // Throws SceneError naming the offending value.
   void validate() const;
-  double number_median() const;          // lognormal: median by number [m]
-  double lower() const;                  // smallest possible diameter [m]
-  double upper() const;                  // largest possible diameter [m]
-  double mean_sphere_volume() const;     // expected pi d^3 / 6 per particle [m^3] (exact, truncation included)
+  double number_median() const;       // lognormal: median by number [m]
+  double lower() const;               // smallest possible diameter [m]
+  double upper() const;               // largest possible diameter [m]
+  double mean_sphere_volume() const;  // expected pi d^3 / 6 per particle [m^3] (exact, truncation included)
   // n diameters [m], in draw order (deterministic for the generator's state).
   std::vector<double> sample(std::size_t n, Random &random) const;
 };

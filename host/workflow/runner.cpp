@@ -4,9 +4,9 @@
 
 #include "core/error.hpp"
 #include "core/suggest.hpp"
-#include "workflow/executor_hook.hpp"
-#include "workflow/local_executor.hpp"
-#include "workflow/scene.hpp"
+#include "workflow/executors/executor_hook.hpp"
+#include "workflow/executors/local_executor.hpp"
+#include "workflow/scene/scene_section.hpp"
 #include "workflow/stage.hpp"
 
 namespace spreadmap {
@@ -48,14 +48,18 @@ int run_workflow(const fs::path &file, const RunOptions &given, PluginRegistry &
     bool found = false;
     for (const auto &s : v.wf.stages) found |= iequals(s.kind, only);
     if (!found)
-      throw InputError("error: --only " + only + ": this workflow has no such stage (stages: " +
-                       [&] { std::vector<std::string> k; for (auto &s : v.wf.stages) k.push_back(s.kind); return join(k); }() + ")");
+      throw InputError("error: --only " + only + ": this workflow has no such stage (stages: " + [&] {
+        std::vector<std::string> k;
+        for (auto &s : v.wf.stages) k.push_back(s.kind);
+        return join(k);
+      }() + ")");
   }
   RunDirectory run(options.out.empty() ? fs::path("runs") / v.wf.name : options.out);
-  if (options.records_manifest()) run.update_manifest([&](nlohmann::json &m) {
-    m["workflow"] = {{"file", fs::absolute(file).string()}, {"name", v.wf.name}};
-    m["scene"] = v.scene ? to_json(*v.scene) : nlohmann::json();
-  });
+  if (options.records_manifest())
+    run.update_manifest([&](nlohmann::json &m) {
+      m["workflow"] = {{"file", fs::absolute(file).string()}, {"name", v.wf.name}};
+      m["scene"] = v.scene ? to_json(*v.scene) : nlohmann::json();
+    });
   spdlog::info("run directory: {}", run.root().string());
   const Scene none;  // a workflow without a scene has no stage that reads one
   StageContext ctx{v.wf, v.scene ? *v.scene : none, run, registry, options};

@@ -10,8 +10,8 @@
 
 #include "core/diagnostics.hpp"
 #include "core/registry.hpp"
-#include "workflow/run_dir.hpp"
-#include "workflow/scene_model.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
 #include "workflow/workflow.hpp"
 
 namespace spreadmap {
@@ -24,7 +24,7 @@ struct RunOptions {
   int jobs = 1;
   std::set<std::string> only;  // empty = all stages
   fs::path out;                // run directory; empty = runs/<name>
-  // Where the simulate stage's cases run (workflow/executor_hook.hpp); null: here, in `jobs` threads
+  // Where the simulate stage's cases run (workflow/executors/executor_hook.hpp); null: here, in `jobs` threads
   // (run_workflow gives the stages a LocalExecutor).
   CaseExecutor *executor = nullptr;
   // --case N: this one case of the design only, as a Slurm array task runs it. Many such processes

@@ -42,8 +42,9 @@ Workflow load_workflow(const fs::path &file) {
   const YAML::Node version = wf.root["version"];
   if (!version) diag.error(Location::of(f, wf.root), "version", "missing", "add `version: 1` as the first line");
   else if (!version.IsScalar() || version.Scalar() != "1")
-    diag.error(Location::of(f, version), "version", "this spreadmap reads workflow version 1, not '" +
-               (version.IsScalar() ? version.Scalar() : std::string("?")) + "'");
+    diag.error(Location::of(f, version), "version",
+               "this spreadmap reads workflow version 1, not '" +
+                   (version.IsScalar() ? version.Scalar() : std::string("?")) + "'");
   const YAML::Node name = wf.root["name"];
   if (!name || !name.IsScalar() || name.Scalar().empty()) {
     wf.name = file.stem().string();
@@ -69,7 +70,8 @@ Workflow load_workflow(const fs::path &file) {
   wf.scene = scene && scene.IsMap() ? scene : YAML::Node(YAML::NodeType::Map);
   const YAML::Node stages = wf.root["stages"];
   if (!stages) {
-    diag.error(Location::of(f, wf.root), "stages", "missing", "add a list, e.g. stages: [{simulate: {...}}, {characterise: {...}}]");
+    diag.error(Location::of(f, wf.root), "stages", "missing",
+               "add a list, e.g. stages: [{simulate: {...}}, {characterise: {...}}]");
   } else if (!stages.IsSequence()) {
     diag.error(Location::of(f, stages), "stages", "expected a list of stages (- simulate: {...})");
   } else {
@@ -84,7 +86,8 @@ Workflow load_workflow(const fs::path &file) {
         kind = s.begin()->first.as<std::string>();
         config = s.begin()->second;
       } else {
-        diag.error(Location::of(f, s), path, "a stage is one key (simulate, characterise, train or map) with its settings");
+        diag.error(Location::of(f, s), path,
+                   "a stage is one key (simulate, characterise, train or map) with its settings");
         continue;
       }
       if (std::find(stage_kinds().begin(), stage_kinds().end(), kind) == stage_kinds().end()) {
@@ -94,7 +97,8 @@ Workflow load_workflow(const fs::path &file) {
         continue;
       }
       // each stage writes its own files in the run directory (and its manifest entry): once only
-      if (const auto dup = std::find_if(wf.stages.begin(), wf.stages.end(), [&](const StageEntry &e) { return e.kind == kind; });
+      if (const auto dup =
+              std::find_if(wf.stages.begin(), wf.stages.end(), [&](const StageEntry &e) { return e.kind == kind; });
           dup != wf.stages.end()) {
         diag.error(Location::of(f, s.IsMap() ? s.begin()->first : s), path, "the stage '" + kind + "' appears twice",
                    "first at " + dup->where.str() + "; a workflow runs each stage once");
@@ -104,7 +108,8 @@ Workflow load_workflow(const fs::path &file) {
         diag.error(Location::of(f, config), path + "." + kind, "expected a mapping of settings");
         continue;
       }
-      wf.stages.push_back({kind, config && config.IsMap() ? config : YAML::Node(YAML::NodeType::Map), Location::of(f, s)});
+      wf.stages.push_back(
+          {kind, config && config.IsMap() ? config : YAML::Node(YAML::NodeType::Map), Location::of(f, s)});
     }
   }
   diag.throw_if_any();

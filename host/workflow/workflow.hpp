@@ -15,21 +15,23 @@ namespace spreadmap {
 namespace fs = std::filesystem;
 
 struct StageEntry {
-  std::string kind;    // simulate | characterise | train | map
-  YAML::Node config;   // its mapping (may be empty)
+  std::string kind;   // simulate | characterise | train | map
+  YAML::Node config;  // its mapping (may be empty)
   Location where;
 };
 
 struct Workflow {
-  fs::path file;        // as given on the command line
-  fs::path dir;         // relative paths in the file resolve against this folder
+  fs::path file;  // as given on the command line
+  fs::path dir;   // relative paths in the file resolve against this folder
   std::string name;
   YAML::Node root;
-  YAML::Node scene;     // the scene mapping
+  YAML::Node scene;        // the scene mapping
   std::string scene_file;  // where `scene` came from (the workflow or a referenced file)
   std::vector<StageEntry> stages;
 
-  fs::path resolve(const std::string &relative) const { return fs::path(relative).is_absolute() ? fs::path(relative) : dir / relative; }
+  fs::path resolve(const std::string &relative) const {
+    return fs::path(relative).is_absolute() ? fs::path(relative) : dir / relative;
+  }
 };
 
 // Parses a YAML file; syntax errors become InputError "error: FILE:LINE:COL: ...".

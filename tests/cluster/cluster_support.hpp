@@ -57,8 +57,8 @@ inline nlohmann::json manifest(const fs::path &run) { return nlohmann::json::par
 inline Command under_mpirun(int n, std::vector<std::string> args) {
   Command c;
   c.program = SPREADMAP_MPIEXEC;
-  c.args = {"--allow-run-as-root", "--oversubscribe", "--bind-to", "none", "-n", std::to_string(n),
-            spreadmap_binary().string()};
+  c.args = {"--allow-run-as-root", "--oversubscribe",          "--bind-to", "none", "-n",
+            std::to_string(n),     spreadmap_binary().string()};
   c.args.insert(c.args.end(), args.begin(), args.end());
   return c;
 }

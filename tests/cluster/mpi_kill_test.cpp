@@ -71,7 +71,8 @@ t::Outcome kill_a_worker_midway(const std::vector<std::string> &args, const fs::
 TEST(MpiKill, TheRerunComputesOnlyTheCasesTheKilledJobLeftUnfinished) {
   t::Scratch scratch("mpi_kill");
   const fs::path run = scratch.dir / "run";
-  const std::vector<std::string> args = {"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "mpi"};
+  const std::vector<std::string> args = {"run", t::mini_quickstart().string(), "--out", run.string(), "--executor",
+                                         "mpi"};
 
   // 1. kill a worker once a case is done. A case lasts about 0.2 s: on a loaded machine the test may
   // see the first case late, when the others are done too, which leaves nothing to prove; the scene
@@ -83,7 +84,8 @@ TEST(MpiKill, TheRerunComputesOnlyTheCasesTheKilledJobLeftUnfinished) {
     const t::Outcome first = kill_a_worker_midway(args, run);
     ASSERT_FALSE(::testing::Test::HasFailure()) << first.describe();
     EXPECT_FALSE(first.exited && first.exit_code == 0) << "mpirun must report the lost rank:\n" << first.describe();
-    for (int i = 0; i < t::mini_cases; ++i) (t::finished(run / "cases" / t::case_id(i)) ? done : todo).push_back(t::case_id(i));
+    for (int i = 0; i < t::mini_cases; ++i)
+      (t::finished(run / "cases" / t::case_id(i)) ? done : todo).push_back(t::case_id(i));
     if (todo.empty()) std::cerr << "try " << attempt << ": every case had finished when the worker was killed\n";
   }
   ASSERT_GE(done.size(), 1u);
@@ -94,7 +96,8 @@ TEST(MpiKill, TheRerunComputesOnlyTheCasesTheKilledJobLeftUnfinished) {
   std::map<std::string, nlohmann::json> recorded;  // manifest entries of finished cases rank 0 had recorded
   const auto before = t::manifest(run);
   for (const auto &id : done) {
-    for (const char *f : {"case.json", "state.vtp", "scene.json"}) kept[id + "/" + f] = t::identify(run / "cases" / id / f);
+    for (const char *f : {"case.json", "state.vtp", "scene.json"})
+      kept[id + "/" + f] = t::identify(run / "cases" / id / f);
     for (const auto &c : before.at("cases"))
       if (c.at("id") == id && c.value("status", "") == "done") recorded[id] = c;
   }

@@ -86,8 +86,8 @@ TEST(MpiExecutor, AnErrorOnRankZeroEndsEveryRank) {
   const fs::path bad = scratch.dir / "bad.yaml";
   std::ofstream(bad) << "version: 1\nname: bad\nscene: {preset: quick, powdr: {count: 300}}\n"
                         "stages:\n  - simulate: {design: {type: list, cases: [{U: 100 mm/s}]}}\n";
-  const t::Outcome mpi = t::run(
-      t::under_mpirun(2, {"run", bad.string(), "--out", (scratch.dir / "run").string(), "--executor", "mpi"}));
+  const t::Outcome mpi =
+      t::run(t::under_mpirun(2, {"run", bad.string(), "--out", (scratch.dir / "run").string(), "--executor", "mpi"}));
   ASSERT_TRUE(mpi.exited) << mpi.describe();
   EXPECT_EQ(mpi.exit_code, 2) << mpi.describe();
   EXPECT_EQ(t::count(mpi.err, "scene.powdr: unknown key"), 1u) << "the error once, from rank 0:\n" << mpi.err;
@@ -108,8 +108,11 @@ TEST(MpiExecutor, TheQuickstartsSimulateAndCharacteriseUnderTwoRanksGiveTheSeria
   const fs::path workflow = scratch.dir / "quickstart.yaml";
   std::ofstream(workflow) << text;
   const fs::path serial = scratch.dir / "serial", mpi = scratch.dir / "mpi";
-  const t::Outcome s = t::run(
-      {{"run", workflow.string(), "--only", "simulate,characterise", "--out", serial.string(), "--jobs", "2"}, {}, {}, {}});
+  const t::Outcome s =
+      t::run({{"run", workflow.string(), "--only", "simulate,characterise", "--out", serial.string(), "--jobs", "2"},
+              {},
+              {},
+              {}});
   ASSERT_EQ(s.exit_code, 0) << s.describe();
   const t::Outcome m = t::run(t::under_mpirun(
       2, {"run", workflow.string(), "--only", "simulate,characterise", "--out", mpi.string(), "--executor", "mpi"}));

@@ -20,7 +20,8 @@ t::Command spreadmap_command(std::vector<std::string> args, std::map<std::string
 }
 
 t::Outcome dry_run(const fs::path &run) {
-  return t::run(spreadmap_command({"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "slurm", "--dry-run"}));
+  return t::run(spreadmap_command(
+      {"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "slurm", "--dry-run"}));
 }
 
 // An array script run as Slurm runs one of its tasks.
@@ -77,7 +78,8 @@ TEST(SlurmExecutor, DryRunWritesBashScriptsWithTheRightArrays) {
     EXPECT_EQ(sbatch_line(*s, "--cpus-per-task"), "#SBATCH --cpus-per-task=1") << "scene.threads of the workflow";
   }
   EXPECT_FALSE(t::contains(stages, "--case")) << stages;
-  EXPECT_TRUE(t::contains(submit, "--dependency=afterok:$heap_job --kill-on-invalid-dep=yes '" + (dir / "cases.sbatch").string()))
+  EXPECT_TRUE(t::contains(
+      submit, "--dependency=afterok:$heap_job --kill-on-invalid-dep=yes '" + (dir / "cases.sbatch").string()))
       << submit;
   EXPECT_TRUE(t::contains(submit, "--dependency=afterok:$heap_job:$cases_job --kill-on-invalid-dep=yes '" +
                                       (dir / "stages.sbatch").string()))
@@ -102,7 +104,8 @@ TEST(SlurmExecutor, ScriptsRunAsSlurmWouldGiveTheSerialRunsMetrics) {
   EXPECT_TRUE(t::contains(heap.err, "simulate: case c000 of 4: to run")) << heap.err;
   {
     std::vector<std::unique_ptr<t::Child>> tasks;
-    for (int k = 1; k < t::mini_cases; ++k) tasks.push_back(std::make_unique<t::Child>(array_task(dir / "cases.sbatch", k)));
+    for (int k = 1; k < t::mini_cases; ++k)
+      tasks.push_back(std::make_unique<t::Child>(array_task(dir / "cases.sbatch", k)));
     for (auto &task : tasks) {
       const t::Outcome o = task->wait();
       EXPECT_EQ(o.exit_code, 0) << o.describe();
@@ -140,8 +143,9 @@ TEST(SlurmExecutor, SubmitsInOrderAndPrintsTheJobIds) {
                                    "echo \"$n;cluster\"\n";
   fs::permissions(bin / "sbatch", fs::perms::owner_all);
   const std::string path = bin.string() + ":/usr/bin:/bin";
-  const t::Outcome out = t::run(spreadmap_command({"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "slurm"},
-                                          {{"PATH", path}, {"SBATCH_LOG", log.string()}}));
+  const t::Outcome out =
+      t::run(spreadmap_command({"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "slurm"},
+                               {{"PATH", path}, {"SBATCH_LOG", log.string()}}));
   ASSERT_EQ(out.exit_code, 0) << out.describe();
   const fs::path dir = run / "slurm";
   EXPECT_EQ(out.out,
@@ -159,8 +163,9 @@ TEST(SlurmExecutor, WithoutSbatchTheErrorSaysWhereTheScriptsAre) {
   t::Scratch scratch("slurm_missing");
   const fs::path empty = scratch.dir / "empty", run = scratch.dir / "run";
   fs::create_directories(empty);
-  const t::Outcome out = t::run(spreadmap_command({"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "slurm"},
-                                          {{"PATH", empty.string()}}));
+  const t::Outcome out =
+      t::run(spreadmap_command({"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "slurm"},
+                               {{"PATH", empty.string()}}));
   EXPECT_EQ(out.exit_code, 2) << out.describe();
   EXPECT_TRUE(t::contains(out.err, "sbatch was not found on PATH")) << out.err;
   EXPECT_TRUE(t::contains(out.err, "bash " + (run / "slurm/submit.sh").string())) << out.err;
@@ -175,8 +180,9 @@ TEST(SlurmExecutor, ARefusedJobIsAnError) {
   fs::create_directories(bin);
   std::ofstream(bin / "sbatch") << "#!/bin/bash\necho 'sbatch: error: invalid partition specified: nope' >&2\nexit 1\n";
   fs::permissions(bin / "sbatch", fs::perms::owner_all);
-  const t::Outcome out = t::run(spreadmap_command({"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "slurm"},
-                                          {{"PATH", bin.string() + ":/usr/bin:/bin"}}));
+  const t::Outcome out =
+      t::run(spreadmap_command({"run", t::mini_quickstart().string(), "--out", run.string(), "--executor", "slurm"},
+                               {{"PATH", bin.string() + ":/usr/bin:/bin"}}));
   EXPECT_EQ(out.exit_code, 1) << out.describe();
   EXPECT_TRUE(t::contains(out.err, "invalid partition specified")) << out.err;
   EXPECT_TRUE(t::contains(out.err, "sbatch refused a job")) << out.err;

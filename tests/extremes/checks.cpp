@@ -8,7 +8,7 @@ namespace spreadmap::extremes {
 
 std::string first_non_finite(const engine::ParticleSet &s) {
   for (std::size_t i = 0; i < s.size(); ++i) {
-    const double values[] = {s.x[i],  s.y[i],  s.z[i],  s.vx[i],     s.vy[i],   s.vz[i],
+    const double values[] = {s.x[i],  s.y[i],  s.z[i],  s.vx[i],     s.vy[i],  s.vz[i],
                              s.wx[i], s.wy[i], s.wz[i], s.radius[i], s.mass[i]};
     for (double v : values)
       if (!std::isfinite(v))
@@ -74,7 +74,8 @@ Energy mechanical_energy(const Scene &scene) {
 
 double top_speed(const engine::ParticleSet &s) {
   double v2 = 0;
-  for (std::size_t i = 0; i < s.size(); ++i) v2 = std::max(v2, s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]);
+  for (std::size_t i = 0; i < s.size(); ++i)
+    v2 = std::max(v2, s.vx[i] * s.vx[i] + s.vy[i] * s.vy[i] + s.vz[i] * s.vz[i]);
   return std::sqrt(v2);
 }
 

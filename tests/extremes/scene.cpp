@@ -70,7 +70,8 @@ Scene::Scene(const SceneSpec &spec)
                                                  {"omega", spec.omega},
                                                  {"start", spec.start},
                                                  {"travel", spec.travel}});
-    sim_->add_geometry({&detail::GeometryOps<spreader::Roller>::table, &*roller_, law(spreader_law_), "spreader/roller"});
+    sim_->add_geometry(
+        {&detail::GeometryOps<spreader::Roller>::table, &*roller_, law(spreader_law_), "spreader/roller"});
   }
   if (spec.count > 0) sim_->add_particles(lattice_heap(spec), spec.density);
 }

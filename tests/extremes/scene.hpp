@@ -26,13 +26,13 @@ struct SceneSpec {
   std::size_t count = 150;
   std::size_t layers = 3;
   double diameter = 250e-6, density = 4430;
-  double heap_from = 8.5e-3;   // clear of the roller's front at rest (axis x = 6 mm, gap 0.5 mm)
-  double drop = 0;             // extra height of the whole lattice above the substrate [m]
-  double jitter_speed = 0;     // random initial speeds up to this [m/s] (fixed seed)
-  double fall_speed = 0;       // initial downward speed of every sphere [m/s]
+  double heap_from = 8.5e-3;  // clear of the roller's front at rest (axis x = 6 mm, gap 0.5 mm)
+  double drop = 0;            // extra height of the whole lattice above the substrate [m]
+  double jitter_speed = 0;    // random initial speeds up to this [m/s] (fixed seed)
+  double fall_speed = 0;      // initial downward speed of every sphere [m/s]
   // Box: x open (particles leaving are removed and counted), y periodic, z open.
   double length = 30e-3, width = 1.25e-3, height = 12e-3;
-  bool end_walls = false;      // plane walls at x = 0 and x = length (a closed box along x)
+  bool end_walls = false;  // plane walls at x = 0 and x = length (a closed box along x)
   // Contacts: hooke_slider everywhere, as in the quick preset.
   double v_max = 0.5, overlap_max = 5e-6;
   Material particles{0.8, 0.185}, substrate{0.8, 0.25}, spreader_surface{0.8, 0.12};

@@ -32,11 +32,11 @@ void expect_clean_run(Scene &scene, const Watch &w, const std::string &label) {
   // energy away. 1e-3 leaves room for the integrator's error at the force kinks (measured: no rise
   // at all on these scenes).
   EXPECT_LE(w.energy_growth_after(scene.spreading_time()), 1.0 + 1e-3) << label;
-  std::printf("%s: %zu spheres left, %llu removed, worst overlaps substrate %.3g %% roller %.3g %% of d, top speed "
-              "%.3g m/s, energy growth at rest %.3g\n",
-              label.c_str(), sim.size(), static_cast<unsigned long long>(sim.removed_count()),
-              100 * w.worst_substrate, 100 * w.worst_roller, w.top_speed,
-              w.energy_growth_after(scene.spreading_time()) - 1);
+  std::printf(
+      "%s: %zu spheres left, %llu removed, worst overlaps substrate %.3g %% roller %.3g %% of d, top speed "
+      "%.3g m/s, energy growth at rest %.3g\n",
+      label.c_str(), sim.size(), static_cast<unsigned long long>(sim.removed_count()), 100 * w.worst_substrate,
+      100 * w.worst_roller, w.top_speed, w.energy_growth_after(scene.spreading_time()) - 1);
 }
 
 Watch spread(Scene &scene) { return run_watched(scene, scene.spreading_time() + relax); }
@@ -62,10 +62,9 @@ TEST_P(RollerSpin, FastSpinAtModerateSpeedStaysPhysical) {
   const Watch w = spread(scene);
   expect_clean_run(scene, w, label(spec));
 }
-INSTANTIATE_TEST_SUITE_P(Omega, RollerSpin, ::testing::Values(-100.0, -50.0, 50.0, 100.0),
-                         [](const auto &info) {
-                           return std::string(info.param < 0 ? "minus" : "plus") + std::to_string(int(std::abs(info.param)));
-                         });
+INSTANTIATE_TEST_SUITE_P(Omega, RollerSpin, ::testing::Values(-100.0, -50.0, 50.0, 100.0), [](const auto &info) {
+  return std::string(info.param < 0 ? "minus" : "plus") + std::to_string(int(std::abs(info.param)));
+});
 
 class RollerSpeed : public ::testing::TestWithParam<double> {};
 

@@ -75,8 +75,8 @@ TEST_P(StableStep, ElasticImpactGainsLittleEnergyWhateverItsPhase) {
   const bool fine = factor <= 0.5;
   EXPECT_LT(mean, fine ? 1 + 1e-3 : 1 + 2e-2) << "energy gained on average in one elastic impact";
   EXPECT_LT(worst, fine ? 1.05 : 1.25) << "energy gained at the worst phase";
-  std::printf("%.1f x dt_crit: an elastic impact returns %.5f of its energy on average, %.4f at worst\n", factor,
-              mean, worst);
+  std::printf("%.1f x dt_crit: an elastic impact returns %.5f of its energy on average, %.4f at worst\n", factor, mean,
+              worst);
 }
 
 TEST_P(StableStep, SpreadingRunStaysPhysical) {

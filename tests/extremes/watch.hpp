@@ -16,12 +16,12 @@ struct EnergySample {
 };
 
 struct Watch {
-  double worst_substrate = -1;     // deepest substrate overlap / diameter seen
-  double worst_roller = -1;        // deepest roller overlap / diameter seen
-  std::size_t roller_inside = 0;   // sphere centres found inside the roller, summed over samples
-  double top_speed = 0;            // fastest sphere seen [m/s]
-  std::string non_finite;          // the first non-finite particle seen, "" if none
-  std::string stopped;             // the engine's error message if it stopped the run, "" if not
+  double worst_substrate = -1;    // deepest substrate overlap / diameter seen
+  double worst_roller = -1;       // deepest roller overlap / diameter seen
+  std::size_t roller_inside = 0;  // sphere centres found inside the roller, summed over samples
+  double top_speed = 0;           // fastest sphere seen [m/s]
+  std::string non_finite;         // the first non-finite particle seen, "" if none
+  std::string stopped;            // the engine's error message if it stopped the run, "" if not
   std::vector<EnergySample> energy;
 
   // Largest energy at or after t_from, relative to the first sample at or after t_from (1 = no growth).

@@ -104,7 +104,7 @@ void expect_no_non_finite_files(const fs::path &dir) {
     }
     if (p.extension() == ".json") {
       std::function<void(const nlohmann::json &, const std::string &)> walk = [&](const nlohmann::json &j,
-                                                                                 const std::string &at) {
+                                                                                  const std::string &at) {
         if (j.is_null() && p.filename() == "case.json") ADD_FAILURE() << p << ": null at " << at << " (a NaN?)";
         if (j.is_number_float()) {
           EXPECT_TRUE(std::isfinite(j.get<double>())) << p << " at " << at;

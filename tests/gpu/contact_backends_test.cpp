@@ -26,7 +26,6 @@ using nlohmann::json;
 
 namespace {
 
-
 // Every value within `rel` of the CPU's, relative to itself or, for a component that nearly cancels,
 // to 1e-3 of the array's largest value. Forces must not be trivially zero; a record field may be
 // (the blade's vertical surface velocity), and then the GPU's must be zero too.
@@ -53,8 +52,9 @@ void expect_close(const std::vector<Real> &gpu, const std::vector<Real> &cpu, do
                      << " relative (worst " << worst << ")";
 }
 
-template <class Real> void expect_same_accumulators(const sm::test::Packing<Real> &g, const sm::test::Packing<Real> &c, double rel,
-                                                   const std::string &what) {
+template <class Real>
+void expect_same_accumulators(const sm::test::Packing<Real> &g, const sm::test::Packing<Real> &c, double rel,
+                              const std::string &what) {
   expect_close(g.fx, c.fx, rel, what + " fx");
   expect_close(g.fy, c.fy, rel, what + " fy");
   expect_close(g.fz, c.fz, rel, what + " fz");
@@ -79,7 +79,9 @@ const std::vector<LawCase> &law_cases() {
       {"hooke_slider", {{"slider", "coulomb"}, {"clamp_normal", true}}, "hooke_slider_coulomb_clamped"},
       {"hooke_history", {{"rolling_friction", 0.05}}, "hooke_history_rolling"},
       {"hertz_mindlin", {{"youngs_modulus", 1e8}}, "hertz_mindlin"},
-      {"hertz_mindlin", {{"youngs_modulus", 1e8}, {"clamp_normal", true}, {"rolling_friction", 0.1}}, "hertz_mindlin_clamped"},
+      {"hertz_mindlin",
+       {{"youngs_modulus", 1e8}, {"clamp_normal", true}, {"rolling_friction", 0.1}},
+       "hertz_mindlin_clamped"},
   };
   return cases;
 }
@@ -204,8 +206,12 @@ TEST_P(SpreaderBackends, ContactRecordsMatchTheCpuInDouble) {
   const auto touching = std::count_if(cw.overlap.begin(), cw.overlap.end(), [](double o) { return o > 0; });
   EXPECT_GT(touching, 50) << "the spreader should touch the top layer";
   expect_close(gw.overlap, cw.overlap, 1e-12, GetParam().name + " overlap");
-  for (auto [g, c, field] : {std::tuple{&gw.nx, &cw.nx, "nx"}, {&gw.ny, &cw.ny, "ny"}, {&gw.nz, &cw.nz, "nz"},
-                             {&gw.vx, &cw.vx, "vx"}, {&gw.vy, &cw.vy, "vy"}, {&gw.vz, &cw.vz, "vz"}}) {
+  for (auto [g, c, field] : {std::tuple{&gw.nx, &cw.nx, "nx"},
+                             {&gw.ny, &cw.ny, "ny"},
+                             {&gw.nz, &cw.nz, "nz"},
+                             {&gw.vx, &cw.vx, "vx"},
+                             {&gw.vy, &cw.vy, "vy"},
+                             {&gw.vz, &cw.vz, "vz"}}) {
     // Only touching records are defined (the others keep what they held, on both backends alike).
     std::vector<double> gt, ct;
     for (std::size_t i = 0; i < cw.overlap.size(); ++i)

@@ -11,8 +11,8 @@
 #include <unistd.h>
 
 #include "gpu/gpu_support.hpp"
-#include "workflow/case_setup.hpp"
-#include "workflow/scene.hpp"
+#include "workflow/simulate/case_setup.hpp"
+#include "workflow/scene/scene_section.hpp"
 #include "workflow/workflow.hpp"
 
 namespace sm = spreadmap;
@@ -20,11 +20,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-
 sm::Scene small_scene(const std::string &precision) {
   sm::Diagnostics diag;
-  const auto resolved =
-      sm::resolve_scene(sm::load_workflow(fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml"), registry(), diag);
+  const auto resolved = sm::resolve_scene(
+      sm::load_workflow(fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml"), registry(), diag);
   diag.throw_if_any();
   sm::Scene scene = *resolved;
   scene.powder.count = 400;
@@ -69,7 +68,8 @@ template <class Real> void backends_agree(const std::string &precision) {
   fs::remove(path);
   const auto c = resumed->sim.state().kinematics_by_id();
   ASSERT_EQ(c.size(), b.size());
-  EXPECT_EQ(std::memcmp(c.data(), b.data(), c.size() * sizeof(double)), 0) << precision << ": resume on the GPU differs";
+  EXPECT_EQ(std::memcmp(c.data(), b.data(), c.size() * sizeof(double)), 0)
+      << precision << ": resume on the GPU differs";
 }
 
 }  // namespace

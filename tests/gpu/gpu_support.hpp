@@ -8,8 +8,8 @@
 #include "core/registry.hpp"
 #include "cuda/backend.hpp"
 
-#define REQUIRE_CUDA_DEVICE()                                \
-  if (spreadmap::cuda::device_count() == 0)                  \
+#define REQUIRE_CUDA_DEVICE()               \
+  if (spreadmap::cuda::device_count() == 0) \
   GTEST_SKIP() << "no CUDA device: " << spreadmap::cuda::probe_devices().why_none
 
 inline spreadmap::PluginRegistry &registry() {

@@ -18,12 +18,21 @@ inline nlohmann::json schema_params(const sm_param_v1 *params, uint32_t n,
     if (overrides.contains(p.name)) continue;
     if (p.required) throw std::invalid_argument(std::string("schema_params: '") + p.name + "' is required");
     switch (p.type) {
-      case SM_NUMBER: j[p.name] = p.def; break;
-      case SM_INTEGER: j[p.name] = static_cast<long>(p.def); break;
-      case SM_BOOLEAN: j[p.name] = p.def != 0; break;
+      case SM_NUMBER:
+        j[p.name] = p.def;
+        break;
+      case SM_INTEGER:
+        j[p.name] = static_cast<long>(p.def);
+        break;
+      case SM_BOOLEAN:
+        j[p.name] = p.def != 0;
+        break;
       case SM_ENUM:
-      case SM_STRING: j[p.name] = p.def_text; break;
-      case SM_TABLE: break;
+      case SM_STRING:
+        j[p.name] = p.def_text;
+        break;
+      case SM_TABLE:
+        break;
     }
   }
   for (const auto &[key, value] : overrides.items()) j[key] = value;

@@ -17,17 +17,17 @@ namespace spreadmap::test {
 
 struct PackingSpec {
   std::uint32_t n = 2000;
-  double radius = 125e-6;      // mean radius [m]
-  double spread = 0.2;         // radii uniform in radius * [1 - spread/2, 1 + spread/2]
-  double compression = 0.012;  // lattice spacing = 2 radius (1 - compression)
-  double jitter = 0.01;        // positions moved by up to +-jitter * spacing along each axis
-  double speed = 0.2;          // velocity components uniform in +-speed [m/s]
-  double spin = 300;           // angular velocity components uniform in +-spin [rad/s]
-  double history = 2e-6;       // history values uniform in +-history (spring elongations [m])
-  double skin = 0.1;           // list cutoff = r_i + r_j + skin * 2 radius
-  double density = 4430;       // [kg/m^3]
-  double dt = 1e-7;            // [s]
-  unsigned history_values = 3; // per pair entry and per wall record
+  double radius = 125e-6;       // mean radius [m]
+  double spread = 0.2;          // radii uniform in radius * [1 - spread/2, 1 + spread/2]
+  double compression = 0.012;   // lattice spacing = 2 radius (1 - compression)
+  double jitter = 0.01;         // positions moved by up to +-jitter * spacing along each axis
+  double speed = 0.2;           // velocity components uniform in +-speed [m/s]
+  double spin = 300;            // angular velocity components uniform in +-spin [rad/s]
+  double history = 2e-6;        // history values uniform in +-history (spring elongations [m])
+  double skin = 0.1;            // list cutoff = r_i + r_j + skin * 2 radius
+  double density = 4430;        // [kg/m^3]
+  double dt = 1e-7;             // [s]
+  unsigned history_values = 3;  // per pair entry and per wall record
   std::uint64_t seed = 20240917;
 };
 
@@ -42,12 +42,23 @@ template <class Real> struct Packing {
   Particles<Real> particles() {
     Particles<Real> p{};
     p.n = n;
-    p.x = x.data(); p.y = y.data(); p.z = z.data();
-    p.vx = vx.data(); p.vy = vy.data(); p.vz = vz.data();
-    p.wx = wx.data(); p.wy = wy.data(); p.wz = wz.data();
-    p.r = r.data(); p.m = m.data();
-    p.fx = fx.data(); p.fy = fy.data(); p.fz = fz.data();
-    p.tx = tx.data(); p.ty = ty.data(); p.tz = tz.data();
+    p.x = x.data();
+    p.y = y.data();
+    p.z = z.data();
+    p.vx = vx.data();
+    p.vy = vy.data();
+    p.vz = vz.data();
+    p.wx = wx.data();
+    p.wy = wy.data();
+    p.wz = wz.data();
+    p.r = r.data();
+    p.m = m.data();
+    p.fx = fx.data();
+    p.fy = fy.data();
+    p.fz = fz.data();
+    p.tx = tx.data();
+    p.ty = ty.data();
+    p.tz = tz.data();
     for (int a = 0; a < 3; ++a) {
       p.box_lo[a] = box_lo[a];
       p.box_hi[a] = box_hi[a];
@@ -93,16 +104,24 @@ template <class Real> Packing<Real> make_packing(const PackingSpec &s) {
     py[i] = (iy + 0.5) * a + s.jitter * a * u(rng);
     pz[i] = (iz + 0.5) * a + s.jitter * a * u(rng);
     pr[i] = s.radius * (1 + 0.5 * s.spread * u(rng));
-    k.x[i] = Real(px[i]); k.y[i] = Real(py[i]); k.z[i] = Real(pz[i]); k.r[i] = Real(pr[i]);
+    k.x[i] = Real(px[i]);
+    k.y[i] = Real(py[i]);
+    k.z[i] = Real(pz[i]);
+    k.r[i] = Real(pr[i]);
     k.m[i] = Real(s.density * 4.0 / 3.0 * 3.14159265358979323846 * pr[i] * pr[i] * pr[i]);
-    k.vx[i] = Real(s.speed * u(rng)); k.vy[i] = Real(s.speed * u(rng)); k.vz[i] = Real(s.speed * u(rng));
-    k.wx[i] = Real(s.spin * u(rng)); k.wy[i] = Real(s.spin * u(rng)); k.wz[i] = Real(s.spin * u(rng));
+    k.vx[i] = Real(s.speed * u(rng));
+    k.vy[i] = Real(s.speed * u(rng));
+    k.vz[i] = Real(s.speed * u(rng));
+    k.wx[i] = Real(s.spin * u(rng));
+    k.wy[i] = Real(s.spin * u(rng));
+    k.wz[i] = Real(s.spin * u(rng));
   }
   // Cell binning: cells at least one cutoff wide, neighbours from the 27 cells around (x, y wrap).
   const double r_max = s.radius * (1 + 0.5 * s.spread);
   const double cutoff = 2 * r_max + s.skin * 2 * s.radius;
   const int nc = std::max(1, int(length / cutoff)), ncz = std::max(1, int((length + a) / cutoff));
-  if (nc < 3) throw std::invalid_argument("make_packing: at least 3 cells across the periodic box are needed; use n >= 64");
+  if (nc < 3)
+    throw std::invalid_argument("make_packing: at least 3 cells across the periodic box are needed; use n >= 64");
   const double cell = length / nc, cell_z = (length + a) / ncz;
   auto cell_of = [&](std::uint32_t i, int &cx, int &cy, int &cz) {
     cx = std::min(nc - 1, int(px[i] / cell));
@@ -148,8 +167,15 @@ template <class Real> Packing<Real> make_packing(const PackingSpec &s) {
 template <class Real> struct WallRecords {
   std::vector<Real> overlap, nx, ny, nz, vx, vy, vz, hist;
   WallContacts<Real> view() {
-    return {static_cast<std::uint32_t>(overlap.size()), overlap.data(), nx.data(), ny.data(), nz.data(),
-            vx.data(), vy.data(), vz.data(), hist.data()};
+    return {static_cast<std::uint32_t>(overlap.size()),
+            overlap.data(),
+            nx.data(),
+            ny.data(),
+            nz.data(),
+            vx.data(),
+            vy.data(),
+            vz.data(),
+            hist.data()};
   }
 };
 
@@ -162,9 +188,13 @@ template <class Real> WallRecords<Real> make_wall_records(const Packing<Real> &k
     double n[3] = {u(rng), u(rng), u(rng)};
     double len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     if (len < 1e-3) n[0] = n[1] = 0, n[2] = len = 1;
-    w.nx[i] = Real(n[0] / len); w.ny[i] = Real(n[1] / len); w.nz[i] = Real(n[2] / len);
+    w.nx[i] = Real(n[0] / len);
+    w.ny[i] = Real(n[1] / len);
+    w.nz[i] = Real(n[2] / len);
     w.overlap[i] = Real(0.01 * s.radius * u(rng));  // <= 0: not touching
-    w.vx[i] = Real(0.1 * u(rng)); w.vy[i] = Real(0.1 * u(rng)); w.vz[i] = Real(0.1 * u(rng));
+    w.vx[i] = Real(0.1 * u(rng));
+    w.vy[i] = Real(0.1 * u(rng));
+    w.vz[i] = Real(0.1 * u(rng));
   }
   w.hist.resize(std::size_t(k.n) * s.history_values);
   for (auto &h : w.hist) h = Real(s.history * u(rng));

@@ -68,7 +68,8 @@ class Quickstart : public ::testing::Test {
     const RunLock lock;
     std::string log;
     status_ = run("run " + std::string(SPREADMAP_SOURCE_DIR) + "/workflows/quickstart.yaml --jobs 2 --quiet --out " +
-                  run_dir.string(), &log);
+                      run_dir.string(),
+                  &log);
     log_ = log;
   }
   static int status_;
@@ -136,7 +137,8 @@ TEST_F(Quickstart, TrainWritesModelsReportsAndTheMap) {
   ASSERT_EQ(status_, 0) << log_;
   for (const char *model : {"bpnn", "gp"}) {
     const fs::path d = run_dir / "train" / model;
-    for (const char *f : {"model.json", "report.json", "report.csv", "parity.csv", "data.csv"}) EXPECT_TRUE(fs::exists(d / f)) << (d / f);
+    for (const char *f : {"model.json", "report.json", "report.csv", "parity.csv", "data.csv"})
+      EXPECT_TRUE(fs::exists(d / f)) << (d / f);
     const auto report = json_file(d / "report.json");
     ASSERT_EQ(report["outputs"].size(), 2u);
     EXPECT_EQ(report["n_train"].get<int>() + report["n_test"].get<int>(), 9);
@@ -152,10 +154,12 @@ TEST_F(Quickstart, TrainWritesModelsReportsAndTheMap) {
 TEST_F(Quickstart, QueryGivesTheBestSettingForARoughness) {
   ASSERT_EQ(status_, 0) << log_;
   std::string out;
-  ASSERT_EQ(run("query " + (run_dir / "train" / "gp" / "model.json").string() + " --best --rq-max 110um", &out), 0) << out;
+  ASSERT_EQ(run("query " + (run_dir / "train" / "gp" / "model.json").string() + " --best --rq-max 110um", &out), 0)
+      << out;
   EXPECT_NE(out.find("U = "), std::string::npos) << out;
   EXPECT_NE(out.find("mm^2/s"), std::string::npos) << out;
-  ASSERT_EQ(run("query " + (run_dir / "train" / "gp" / "model.json").string() + " --at U=70mm/s,omega=0rad/s", &out), 0) << out;
+  ASSERT_EQ(run("query " + (run_dir / "train" / "gp" / "model.json").string() + " --at U=70mm/s,omega=0rad/s", &out), 0)
+      << out;
   EXPECT_NE(out.find("+-"), std::string::npos) << "gp predictions come with their standard deviation: " << out;
 }
 
@@ -163,7 +167,7 @@ TEST_F(Quickstart, QueryGivesTheBestSettingForARoughness) {
 TEST_F(Quickstart, DrawsSnapshotHeightMapSurfacesParityAndMap) {
   ASSERT_EQ(status_, 0) << log_;
   std::vector<fs::path> pngs = {run_dir / "cases/c000/snapshot.png", run_dir / "cases/c000/heightmap.png",
-                                run_dir / "train/bpnn/parity.png",  run_dir / "map/map.png",
+                                run_dir / "train/bpnn/parity.png",   run_dir / "map/map.png",
                                 run_dir / "map/surface_vs.png",      run_dir / "map/surface_rq.png"};
   for (const auto &p : pngs) {
     ASSERT_TRUE(fs::exists(p)) << p;
@@ -182,8 +186,11 @@ TEST_F(Quickstart, ASecondRunRecomputesNothing) {
   const auto before = fs::last_write_time(run_dir / "cases/c004/state.vtp");
   std::string out;
   const RunLock lock;
-  ASSERT_EQ(run("run " + std::string(SPREADMAP_SOURCE_DIR) + "/workflows/quickstart.yaml --only simulate,characterise --out " +
-                run_dir.string(), &out), 0) << out;
+  ASSERT_EQ(run("run " + std::string(SPREADMAP_SOURCE_DIR) +
+                    "/workflows/quickstart.yaml --only simulate,characterise --out " + run_dir.string(),
+                &out),
+            0)
+      << out;
   EXPECT_NE(out.find("0 to run, 9 finished already"), std::string::npos) << out;
   EXPECT_NE(out.find("9 up to date"), std::string::npos) << out;
   EXPECT_EQ(fs::last_write_time(run_dir / "cases/c004/state.vtp"), before);

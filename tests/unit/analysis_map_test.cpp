@@ -39,7 +39,7 @@ TEST(AnalysisGrid, PointsCoverTheBoxWithExactEnds) {
   ASSERT_EQ(x.rows(), 101 * 81);
   EXPECT_EQ(x(0, 0), 0.0);
   EXPECT_EQ(x(0, 1), -1.0);
-  EXPECT_EQ(x(80, 1), 1.0);       // second axis fastest
+  EXPECT_EQ(x(80, 1), 1.0);  // second axis fastest
   EXPECT_EQ(x(81, 0), 0.01);
   EXPECT_EQ(x(x.rows() - 1, 0), 1.0);
   EXPECT_EQ(sa::default_grid_points(2), (std::vector<std::size_t>{101, 81}));
@@ -56,7 +56,7 @@ TEST(AnalysisOptimum, FindsTheConstrainedMaximumWithinOneCell) {
     ASSERT_TRUE(o.found);
     EXPECT_LE(o.rq, target);
     EXPECT_LE(std::abs(o.x[0] - std::sqrt(target)), 0.01) << target;  // one cell in U
-    EXPECT_LE(std::abs(o.x[1] - 0.3), 0.025) << target;                // one cell in omega
+    EXPECT_LE(std::abs(o.x[1] - 0.3), 0.025) << target;               // one cell in omega
     EXPECT_EQ(o.probability, -1.0);
   }
   EXPECT_FALSE(sa::find_optimum(g, 0, 1, -1.0).found);

@@ -27,7 +27,8 @@ TEST(AnalysisScores, NrmseAndPearsonMatchHandValues) {
 }
 
 TEST(AnalysisTable, CsvRoundTripIsExactAndLookupIgnoresCase) {
-  const std::string text = "case, U ,omega,\"Vs, spread\",split\nc000,0.04,-20,1.25e-05,train\n\nc001,0.1,20,\"2.5e-05\",TEST\n";
+  const std::string text =
+      "case, U ,omega,\"Vs, spread\",split\nc000,0.04,-20,1.25e-05,train\n\nc001,0.1,20,\"2.5e-05\",TEST\n";
   const sa::Table t = sa::Table::parse_csv(text, "metrics.csv");
   ASSERT_EQ(t.rows(), 2u);
   EXPECT_EQ(t.column("u"), 1u);
@@ -52,7 +53,8 @@ TEST(AnalysisTable, ErrorsNameFileLineAndColumn) {
     t.numbers("b");
     FAIL() << "expected an error";
   } catch (const std::runtime_error &e) {
-    EXPECT_NE(std::string(e.what()).find("m.csv:3: column 2 ('b'): 'oops' is not a number"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("m.csv:3: column 2 ('b'): 'oops' is not a number"), std::string::npos)
+        << e.what();
   }
   try {
     t.column("c");

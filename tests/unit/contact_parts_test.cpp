@@ -155,8 +155,9 @@ TEST(ContactFrequencies, HookeSliderHasOmega0EverywhereAndTheRestitutionZeta) {
 TEST(ContactFrequencies, HookeHistoryReportsTheFasterOfNormalAndTangentialModes) {
   const double w0 = 0.5 / 2.5e-6;
   EXPECT_DOUBLE_EQ(sm::test::bind_law<sm::HookeHistory>().natural_frequency(1e-8, 1e-4), w0);
-  EXPECT_DOUBLE_EQ(sm::test::bind_law<sm::HookeHistory>({{"tangential_stiffness_ratio", 1.0}}).natural_frequency(1e-8, 1e-4),
-                   w0 * std::sqrt(3.5));
+  EXPECT_DOUBLE_EQ(
+      sm::test::bind_law<sm::HookeHistory>({{"tangential_stiffness_ratio", 1.0}}).natural_frequency(1e-8, 1e-4),
+      w0 * std::sqrt(3.5));
   EXPECT_NEAR(sm::test::bind_law<sm::HookeHistory>({{"restitution", 0.5}}).damping_ratio(1, 1), 0.215454, 1e-6);
 }
 

@@ -34,7 +34,8 @@ TEST(CoreDiagnostics, MessageShape) {
   diag.error({"wf.yaml", 4, 7}, "scene.powder.diameter", "outside [1e-06, 0.1] m", "diameter: sphere diameter");
   diag.error({"wf.yaml", 2, 1}, "", "a workflow is a YAML mapping");
   ASSERT_EQ(diag.errors().size(), 2u);
-  EXPECT_EQ(diag.errors()[0], "error: wf.yaml:4:7: scene.powder.diameter: outside [1e-06, 0.1] m\n  diameter: sphere diameter");
+  EXPECT_EQ(diag.errors()[0],
+            "error: wf.yaml:4:7: scene.powder.diameter: outside [1e-06, 0.1] m\n  diameter: sphere diameter");
   EXPECT_EQ(diag.errors()[1], "error: wf.yaml:2:1: a workflow is a YAML mapping");
   try {
     diag.throw_if_any();

@@ -53,8 +53,17 @@ void *create(const char *, sm_error *err) {
 
 void destroy(void *self) { delete static_cast<int *>(self); }
 
-[[maybe_unused]] const sm_plugin_v1 descriptor = {FIXTURE_ABI, FIXTURE_KIND, FIXTURE_NAME, FIXTURE_VERSION, "registry test fixture",
-                                                  params, sizeof params / sizeof params[0], SM_BACKEND_CPU, &create, &destroy, nullptr};
+[[maybe_unused]] const sm_plugin_v1 descriptor = {FIXTURE_ABI,
+                                                  FIXTURE_KIND,
+                                                  FIXTURE_NAME,
+                                                  FIXTURE_VERSION,
+                                                  "registry test fixture",
+                                                  params,
+                                                  sizeof params / sizeof params[0],
+                                                  SM_BACKEND_CPU,
+                                                  &create,
+                                                  &destroy,
+                                                  nullptr};
 
 }  // namespace
 

@@ -20,7 +20,9 @@ namespace {
 
 const fs::path fixtures = SPREADMAP_FIXTURE_DIR;
 
-fs::path library(const std::string &fault, const std::string &stem) { return fixtures / fault / "contact" / (stem + ".so"); }
+fs::path library(const std::string &fault, const std::string &stem) {
+  return fixtures / fault / "contact" / (stem + ".so");
+}
 
 bool contains(const std::string &text, const std::string &part) { return text.find(part) != std::string::npos; }
 
@@ -171,8 +173,8 @@ TEST(CoreRegistry, FirstRootWinsAndTheShadowedCopyIsLoggedOnce) {
   const auto lines = log.lines();
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_TRUE(contains(lines[0], "contact/fixture_law")) << lines[0];
-  EXPECT_TRUE(contains(lines[0], library("shadow", "fixture_law").string() + " shadows " +
-                                     library("good", "fixture_law").string()))
+  EXPECT_TRUE(contains(
+      lines[0], library("shadow", "fixture_law").string() + " shadows " + library("good", "fixture_law").string()))
       << lines[0];
 }
 

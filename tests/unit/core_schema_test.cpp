@@ -182,8 +182,9 @@ TEST(CoreSchema, ThrowIfAnyCarriesEveryMessageAsInputError) {
 }
 
 TEST(CoreSchema, JsonAndTableDescriptionsListEveryParameter) {
-  const sm_plugin_v1 d = {SPREADMAP_PLUGIN_ABI, "contact", "demo", "1.2.3", "a demo", params,
-                          static_cast<uint32_t>(std::size(params)), SM_BACKEND_CPU, nullptr, nullptr, nullptr};
+  const sm_plugin_v1 d = {
+      SPREADMAP_PLUGIN_ABI, "contact", "demo",  "1.2.3", "a demo", params, static_cast<uint32_t>(std::size(params)),
+      SM_BACKEND_CPU,       nullptr,   nullptr, nullptr};
   const auto j = sm::schema_json(d);
   ASSERT_EQ(j["params"].size(), std::size(params));
   EXPECT_EQ(j["params"][0]["name"], "diameter");

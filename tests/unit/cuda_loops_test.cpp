@@ -179,7 +179,8 @@ json spreader_over_packing(json params) {
 }
 
 TEST(CudaLoops, RollerRecordsAreScheduleIndependent) {
-  expect_geometry_records(sm::test::bind_with<sm::spreader::Roller>(spreader_over_packing({{"diameter", 2e-3}, {"omega", -20.0}})));
+  expect_geometry_records(
+      sm::test::bind_with<sm::spreader::Roller>(spreader_over_packing({{"diameter", 2e-3}, {"omega", -20.0}})));
 }
 
 TEST(CudaLoops, BladeRecordsAreScheduleIndependent) {

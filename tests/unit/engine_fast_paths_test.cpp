@@ -1,7 +1,7 @@
 // The engine's fast paths give exactly the results of the plain ones: a law without history
 // evaluated once per pair (spreadmap/pair_once.hpp) against every list entry, for any number of
-// threads, with every instruction set the processor runs; planes evaluated in place against a gathered copy of the touching particles; a geometry
-// evaluated for its near particles only against every particle; sleeping particles
+// threads, with every instruction set the processor runs; planes evaluated in place against a gathered copy of the
+// touching particles; a geometry evaluated for its near particles only against every particle; sleeping particles
 // (Settings::sleep): no bit changes where none may sleep, asleep means exactly still, woken by impacts.
 #include "engine_test_law.hpp"
 
@@ -54,8 +54,7 @@ ContactLaw bind_slider(const TestSlider &law) { return {&sm::detail::ContactOps<
 struct TestBall {
   double centre[3], velocity[3], radius;
 
-  template <class Real>
-  SM_HD bool operator()(const sm::Vec3<Real> &p, Real r, Real t, sm::WallHit<Real> &hit) const {
+  template <class Real> SM_HD bool operator()(const sm::Vec3<Real> &p, Real r, Real t, sm::WallHit<Real> &hit) const {
     const sm::Vec3<Real> c{Real(centre[0] + velocity[0] * t), Real(centre[1] + velocity[1] * t),
                            Real(centre[2] + velocity[2] * t)};
     const sm::Vec3<Real> d = p - c;
@@ -260,11 +259,12 @@ TEST(EngineSleep, ARestingHeapSleepsStaysExactlyPutAndLeavesTheList) {
     if (sim.arrays().mobile[i] != 0) continue;
     std::size_t k = 0;
     while (before.id[k] != after.id[i]) ++k;
-    frozen += before.x[k] == after.x[i] && before.y[k] == after.y[i] && before.z[k] == after.z[i] &&
-              after.vx[i] == 0 && after.vy[i] == 0 && after.vz[i] == 0 && after.wx[i] == 0;
+    frozen += before.x[k] == after.x[i] && before.y[k] == after.y[i] && before.z[k] == after.z[i] && after.vx[i] == 0 &&
+              after.vy[i] == 0 && after.vz[i] == 0 && after.wx[i] == 0;
   }
   EXPECT_EQ(frozen, sim.sleeping_count());
-  const double integrated_share = (sim.counters().integrated_particle_steps - integrated) / (sim.counters().particle_steps - all);
+  const double integrated_share =
+      (sim.counters().integrated_particle_steps - integrated) / (sim.counters().particle_steps - all);
   EXPECT_LT(integrated_share, 0.1);
 }
 

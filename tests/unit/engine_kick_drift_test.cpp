@@ -28,23 +28,40 @@ template <class Real> struct Particles {
   explicit Particles(std::size_t n, unsigned seed = 7) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(0, 1), s(-1, 1);
-    for (auto *a : {&x, &y, &z, &vx, &vy, &vz, &fx, &fy, &fz, &wx, &wy, &wz, &tx, &ty, &tz, &x0, &y0, &z0, &inv_m,
-                    &inv_i, &mobile})
+    for (auto *a : {&x,  &y,  &z,  &vx, &vy, &vz, &fx, &fy,    &fz,    &wx,    &wy,
+                    &wz, &tx, &ty, &tz, &x0, &y0, &z0, &inv_m, &inv_i, &mobile})
       a->resize(n);
     for (std::size_t i = 0; i < n; ++i) {
-      x[i] = Real(0.2 + 0.6 * u(rng)); y[i] = Real(2 * u(rng)); z[i] = Real(0.5 + 2 * u(rng));
-      x0[i] = x[i] + Real(0.01 * s(rng)); y0[i] = y[i] + Real(0.01 * s(rng)); z0[i] = z[i] + Real(0.01 * s(rng));
-      vx[i] = Real(s(rng)); vy[i] = Real(40 * s(rng)); vz[i] = Real(s(rng));  // some cross y = 0 or 2
-      wx[i] = Real(s(rng)); wy[i] = Real(s(rng)); wz[i] = Real(s(rng));
-      fx[i] = Real(s(rng)); fy[i] = Real(s(rng)); fz[i] = Real(s(rng));
-      tx[i] = Real(s(rng)); ty[i] = Real(s(rng)); tz[i] = Real(s(rng));
-      inv_m[i] = Real(1 + u(rng)); inv_i[i] = Real(10 + u(rng)); mobile[i] = 1;
+      x[i] = Real(0.2 + 0.6 * u(rng));
+      y[i] = Real(2 * u(rng));
+      z[i] = Real(0.5 + 2 * u(rng));
+      x0[i] = x[i] + Real(0.01 * s(rng));
+      y0[i] = y[i] + Real(0.01 * s(rng));
+      z0[i] = z[i] + Real(0.01 * s(rng));
+      vx[i] = Real(s(rng));
+      vy[i] = Real(40 * s(rng));
+      vz[i] = Real(s(rng));  // some cross y = 0 or 2
+      wx[i] = Real(s(rng));
+      wy[i] = Real(s(rng));
+      wz[i] = Real(s(rng));
+      fx[i] = Real(s(rng));
+      fy[i] = Real(s(rng));
+      fz[i] = Real(s(rng));
+      tx[i] = Real(s(rng));
+      ty[i] = Real(s(rng));
+      tz[i] = Real(s(rng));
+      inv_m[i] = Real(1 + u(rng));
+      inv_i[i] = Real(10 + u(rng));
+      mobile[i] = 1;
     }
-    k = {x.data(), y.data(), z.data(), vx.data(), vy.data(), vz.data(), fx.data(), fy.data(), fz.data(),
-         wx.data(), wy.data(), wz.data(), tx.data(), ty.data(), tz.data(), x0.data(), y0.data(), z0.data(),
-         inv_m.data(), inv_i.data(), mobile.data(),
-         Real(0.5e-2), Real(1e-2), {0, 0, Real(-9.81)}, {0, 0, 0}, {1, 2, 3}, {1, 2, 3},
-         {false, true, false}, true, false};
+    k = {x.data(),      y.data(),     z.data(),     vx.data(),
+         vy.data(),     vz.data(),    fx.data(),    fy.data(),
+         fz.data(),     wx.data(),    wy.data(),    wz.data(),
+         tx.data(),     ty.data(),    tz.data(),    x0.data(),
+         y0.data(),     z0.data(),    inv_m.data(), inv_i.data(),
+         mobile.data(), Real(0.5e-2), Real(1e-2),   {0, 0, Real(-9.81)},
+         {0, 0, 0},     {1, 2, 3},    {1, 2, 3},    {false, true, false},
+         true,          false};
   }
 };
 
@@ -59,7 +76,9 @@ template <class Real> Real expected_kick_drift(const Particles<Real> &p, std::si
   y = y >= Real(2) ? y - Real(2) : (y < Real(0) ? y + Real(2) : y);
   out[1] = y;
   out[2] = p.z[i] + dt * vz;
-  out[3] = vx; out[4] = vy; out[5] = vz;
+  out[3] = vx;
+  out[4] = vy;
+  out[5] = vz;
   Real dy = y - p.y0[i];
   dy = dy > Real(1) ? dy - Real(2) : (dy < Real(-1) ? dy + Real(2) : dy);
   const Real dx = out[0] - p.x0[i], dz = out[2] - p.z0[i];
@@ -154,8 +173,8 @@ template <class Real> void check_fused_pass(bool rotate) {
     EXPECT_EQ(by_fused.escaped, by_apart.escaped);
     EXPECT_EQ(by_fused.nonfinite, by_apart.nonfinite);
     auto columns = [](Particles<Real> &p) {
-      return std::vector<std::vector<Real> *>{&p.x, &p.y, &p.z, &p.vx, &p.vy, &p.vz, &p.wx, &p.wy, &p.wz,
-                                              &p.fx, &p.fy, &p.fz, &p.tx, &p.ty, &p.tz};
+      return std::vector<std::vector<Real> *>{&p.x,  &p.y,  &p.z,  &p.vx, &p.vy, &p.vz, &p.wx, &p.wy,
+                                              &p.wz, &p.fx, &p.fy, &p.fz, &p.tx, &p.ty, &p.tz};
     };
     using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
     const auto a = columns(fused), b = columns(apart);

@@ -18,9 +18,9 @@ namespace spreadmap::engine::testing {
 
 struct TestSpringDashpot {
   static constexpr int history = 3;
-  double k = 100;     // normal stiffness [N/m]
-  double zeta = 0;    // damping ratio [-]
-  double mu = 0;      // friction coefficient [-]
+  double k = 100;   // normal stiffness [N/m]
+  double zeta = 0;  // damping ratio [-]
+  double mu = 0;    // friction coefficient [-]
 
   static TestSpringDashpot with_restitution(double k, double e, double mu = 0) {
     const double le = std::log(e);
@@ -45,7 +45,9 @@ struct TestSpringDashpot {
         ft *= cap / mag;
         s = ft * (Real(-1) / kt);
       }
-      h[0] = s.x; h[1] = s.y; h[2] = s.z;
+      h[0] = s.x;
+      h[1] = s.y;
+      h[2] = s.z;
       f.tangent = ft;
     }
     return f;
@@ -60,9 +62,16 @@ inline double sphere_mass(double r, double density) { return density * 4.0 / 3.0
 
 inline void push_particle(ParticleSet &s, double x, double y, double z, double r, double vx = 0, double vy = 0,
                           double vz = 0) {
-  s.x.push_back(x); s.y.push_back(y); s.z.push_back(z); s.radius.push_back(r);
-  s.vx.push_back(vx); s.vy.push_back(vy); s.vz.push_back(vz);
-  s.wx.push_back(0); s.wy.push_back(0); s.wz.push_back(0);
+  s.x.push_back(x);
+  s.y.push_back(y);
+  s.z.push_back(z);
+  s.radius.push_back(r);
+  s.vx.push_back(vx);
+  s.vy.push_back(vy);
+  s.vz.push_back(vz);
+  s.wx.push_back(0);
+  s.wy.push_back(0);
+  s.wz.push_back(0);
 }
 
 // A loose random packing: a jittered lattice of `n` spheres of radius r in [lo, hi) with random

@@ -129,7 +129,8 @@ TEST(PairBalance, CutsMoveHalfWayToEqualTimes) {
       sm::detail::retune(b, threads);
     }
     const double each = cost(0, 1) / threads;
-    for (int t = 0; t < threads; ++t) EXPECT_NEAR(cost(b.cut[t], b.cut[t + 1]), each, 1e-6 * each) << threads << " threads";
+    for (int t = 0; t < threads; ++t)
+      EXPECT_NEAR(cost(b.cut[t], b.cut[t + 1]), each, 1e-6 * each) << threads << " threads";
   }
 }
 
@@ -162,8 +163,8 @@ TEST(PairLoop, EveryWaitingParticleGetsItsRecordsOnceWhicheverThreadSumsThem) {
   // 12 particles with the neighbours below (full list, increasing); each entry's record holds
   // (entry + 1) in all 6 values. The particles are split in equal ranges, one per thread; a particle
   // waits when its lowest neighbour lies below its range's start, and only it gets its records.
-  const std::vector<std::vector<std::uint32_t>> neighbours = {{1},    {0, 2}, {1, 3}, {2, 4},  {3, 5},  {2, 4, 6},
-                                                               {5, 7}, {6, 8}, {7, 9}, {8, 10}, {7, 9}, {10}};
+  const std::vector<std::vector<std::uint32_t>> neighbours = {{1},    {0, 2}, {1, 3}, {2, 4},  {3, 5}, {2, 4, 6},
+                                                              {5, 7}, {6, 8}, {7, 9}, {8, 10}, {7, 9}, {10}};
   std::vector<std::uint32_t> start{0}, nbr;
   for (const auto &list : neighbours) {
     nbr.insert(nbr.end(), list.begin(), list.end());
@@ -178,7 +179,12 @@ TEST(PairLoop, EveryWaitingParticleGetsItsRecordsOnceWhicheverThreadSumsThem) {
     list.scratch = scratch.data();
     sm::Particles<double> p{};
     p.n = 12;
-    p.fx = &f[0]; p.fy = &f[12]; p.fz = &f[24]; p.tx = &f[36]; p.ty = &f[48]; p.tz = &f[60];
+    p.fx = &f[0];
+    p.fy = &f[12];
+    p.fz = &f[24];
+    p.tx = &f[36];
+    p.ty = &f[48];
+    p.tz = &f[60];
     p.team = this_thread_team();
     std::vector<bool> waits(12, false);
     std::vector<sm::detail::WaitingSpan> spans(threads);
@@ -195,9 +201,11 @@ TEST(PairLoop, EveryWaitingParticleGetsItsRecordsOnceWhicheverThreadSumsThem) {
     for (std::uint32_t i = 0; i < 12; ++i) {
       double expected = 0;
       for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) expected += waits[i] ? double(k + 1) : 0.0;
-      for (int c = 0; c < 6; ++c) EXPECT_EQ(f[c * 12 + i], expected) << threads << " threads, particle " << i << ", value " << c;
+      for (int c = 0; c < 6; ++c)
+        EXPECT_EQ(f[c * 12 + i], expected) << threads << " threads, particle " << i << ", value " << c;
       for (std::uint32_t k = start[i]; k < start[i + 1]; ++k)
-        EXPECT_EQ(scratch[k * 6], waits[i] ? 0.0 : double(k + 1)) << threads << " threads: a waiting particle's records are cleared, others kept";
+        EXPECT_EQ(scratch[k * 6], waits[i] ? 0.0 : double(k + 1))
+            << threads << " threads: a waiting particle's records are cleared, others kept";
     }
     EXPECT_EQ(std::count(waits.begin(), waits.end(), true) > 0, threads > 1) << threads << " threads";
   }

@@ -86,10 +86,9 @@ TEST(LayerClippedSphere, FourQuadrantsAroundAnyPointAddUpToTheSphere) {
   for (double px : {-0.7, -0.1, 0.3, 0.8})
     for (double py : {-0.5, 0.05, 0.45, 0.9}) {
       const double x = xc + px * r, y = yc + py * r;
-      const double sum = sphere_volume_in_prism(xc, yc, r, -far, x, -far, y) +
-                         sphere_volume_in_prism(xc, yc, r, x, far, -far, y) +
-                         sphere_volume_in_prism(xc, yc, r, -far, x, y, far) +
-                         sphere_volume_in_prism(xc, yc, r, x, far, y, far);
+      const double sum =
+          sphere_volume_in_prism(xc, yc, r, -far, x, -far, y) + sphere_volume_in_prism(xc, yc, r, x, far, -far, y) +
+          sphere_volume_in_prism(xc, yc, r, -far, x, y, far) + sphere_volume_in_prism(xc, yc, r, x, far, y, far);
       EXPECT_NEAR(sum, whole, 1e-12 * whole) << px << " " << py;
     }
 }

@@ -32,13 +32,13 @@ struct Spheres {
 
 TEST(LayerResting, StacksAndChainsRestInFlightDoesNot) {
   Spheres s;
-  s.add(1e-3, 0.5e-3, r);                      // 0: on the substrate
-  s.add(1e-3, 0.5e-3, 3 * r - 1e-9);           // 1: on 0 (touching, overlap 1 nm)
-  s.add(1e-3 + 2 * r - 1e-9, 0.5e-3, r);       // 2: beside 0, on the substrate
-  s.add(2e-3, 0.5e-3, 1.2e-3);                 // 3: alone in flight
-  s.add(2.5e-3, 0.5e-3, 1.5e-3);               // 4, 5: a touching pair in flight
+  s.add(1e-3, 0.5e-3, r);                 // 0: on the substrate
+  s.add(1e-3, 0.5e-3, 3 * r - 1e-9);      // 1: on 0 (touching, overlap 1 nm)
+  s.add(1e-3 + 2 * r - 1e-9, 0.5e-3, r);  // 2: beside 0, on the substrate
+  s.add(2e-3, 0.5e-3, 1.2e-3);            // 3: alone in flight
+  s.add(2.5e-3, 0.5e-3, 1.5e-3);          // 4, 5: a touching pair in flight
   s.add(2.5e-3, 0.5e-3, 1.5e-3 + 2 * r);
-  s.add(1e-3, 0.5e-3, 5 * r + 0.5 * r);        // 6: half a radius above 1: not touching
+  s.add(1e-3, 0.5e-3, 5 * r + 0.5 * r);  // 6: half a radius above 1: not touching
   const auto resting = layer::resting_spheres(s.view(), 0.0, {0, 1e-3});
   EXPECT_EQ(resting, (std::vector<std::uint8_t>{1, 1, 1, 0, 0, 0, 0}));
 }
@@ -46,8 +46,8 @@ TEST(LayerResting, StacksAndChainsRestInFlightDoesNot) {
 TEST(LayerResting, TouchingAcrossThePeriodicSeamCounts) {
   const double width = 1e-3;
   Spheres s;
-  s.add(1e-3, 0.05 * r, r);                               // on the substrate at the lower edge
-  s.add(1e-3, width - 0.05 * r, 3 * r - 1e-9);            // on top of it through the seam (dy = 0.1 r)
+  s.add(1e-3, 0.05 * r, r);                     // on the substrate at the lower edge
+  s.add(1e-3, width - 0.05 * r, 3 * r - 1e-9);  // on top of it through the seam (dy = 0.1 r)
   const auto periodic = layer::resting_spheres(s.view(), 0.0, {0, width});
   // minimum-image separation sqrt((0.1 r)^2 + (2 r - 1e-9)^2) = 1.0012 x 2 r: within the 1 % tolerance
   EXPECT_EQ(periodic, (std::vector<std::uint8_t>{1, 1}));

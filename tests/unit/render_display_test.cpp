@@ -21,8 +21,7 @@ namespace fs = std::filesystem;
 
 namespace {
 // Runs `body` in a child; its exit status (0 = pass) and what it wrote to `out` come back.
-template <class F>
-std::pair<int, std::string> in_child(F body) {
+template <class F> std::pair<int, std::string> in_child(F body) {
   int fds[2];
   if (::pipe(fds) != 0) return {-1, ""};
   const pid_t pid = ::fork();

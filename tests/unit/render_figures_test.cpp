@@ -126,9 +126,15 @@ TEST(RenderFigures, ProcessMapHasBothContourFamilies) {
   const auto im = check_figure("map", png, 100);
   // Filled R_q bands: at least 4 distinct palette colours cover sizeable areas.
   int bands = 0;
-  const std::array<std::array<int, 3>, 9> yellow_red{{{255, 255, 204}, {255, 237, 160}, {254, 217, 118},
-                                                      {254, 178, 76}, {253, 141, 60}, {252, 78, 42},
-                                                      {227, 26, 28}, {189, 0, 38}, {128, 0, 38}}};
+  const std::array<std::array<int, 3>, 9> yellow_red{{{255, 255, 204},
+                                                      {255, 237, 160},
+                                                      {254, 217, 118},
+                                                      {254, 178, 76},
+                                                      {253, 141, 60},
+                                                      {252, 78, 42},
+                                                      {227, 26, 28},
+                                                      {189, 0, 38},
+                                                      {128, 0, 38}}};
   for (const auto& c : yellow_red) bands += rt::count_colour(im, c, 3) > 200 ? 1 : 0;
   EXPECT_GE(bands, 3) << "filled R_q bands missing";
   // V_s lines in their dark blue.
@@ -163,8 +169,9 @@ TEST(RenderFigures, ReferenceComparisonCatchesAChangedCamera) {
   // and fails a reframed camera (snapshot of a longer strip: 14.6 measured, > tolerance required).
   if (rt::regenerate_references()) GTEST_SKIP() << "references being regenerated";
   r::process_map(rt::process_map_input(false), out_dir() / "map_no_std.png", small("process map"));
-  EXPECT_GT(rt::mean_abs_difference(rt::read_png(out_dir() / "map_no_std.png"), rt::read_png(rt::reference_path("map"))),
-            0.3);
+  EXPECT_GT(
+      rt::mean_abs_difference(rt::read_png(out_dir() / "map_no_std.png"), rt::read_png(rt::reference_path("map"))),
+      0.3);
   r::Options wide = small("snapshot");
   auto moved = rt::heap_snapshot();
   moved.domain.hi[0] = 0.05;  // longer strip: the automatic camera frames it differently

@@ -59,8 +59,8 @@ inline HeightmapInput layer_heightmap() {
 }
 
 // Smooth stand-ins for the study's fields over U = 40..100 mm/s, omega = -20..20 rad/s (SI).
-inline double vs_model(double u, double w) { return u * (5.0e-4 + 4.0e-6 * w); }                  // m^2/s
-inline double rq_model(double u, double w) { return 9e-5 + 0.25e-3 * (u - 0.04) - 0.5e-6 * w; }   // m
+inline double vs_model(double u, double w) { return u * (5.0e-4 + 4.0e-6 * w); }                 // m^2/s
+inline double rq_model(double u, double w) { return 9e-5 + 0.25e-3 * (u - 0.04) - 0.5e-6 * w; }  // m
 inline double rq_std_model(double u, double w) { return 1e-6 + 2e-6 * std::hypot((u - 0.07) / 0.03, w / 20); }
 
 inline std::vector<double> axis(double lo, double hi, int n) {

@@ -7,20 +7,20 @@
 #include <numeric>
 
 #include "scene/coverage.hpp"
-#include "scene/random.hpp"
+#include "spreadmap/random.hpp"
 #include "scene/size_distribution.hpp"
 
 namespace sc = spreadmap::scene;
 
 TEST(SceneRandom, UniformIsTheTop53BitsOfTheStandardEngine) {
   // std::mt19937_64's first output for seed 5489 is fixed by the standard's default-seed value.
-  sc::Random random(5489);
+  spreadmap::Random random(5489);
   EXPECT_EQ(random.uniform(), static_cast<double>(14514284786278117030ull >> 11) * 0x1.0p-53);
 }
 
 TEST(SceneRandom, NormalHasZeroMeanUnitVariance) {
   // 200000 draws: standard errors 0.0022 (mean) and 0.0032 (variance); allow 4 of them.
-  sc::Random random(3);
+  spreadmap::Random random(3);
   const int n = 200000;
   double sum = 0, sum2 = 0;
   for (int i = 0; i < n; ++i) {
@@ -56,7 +56,7 @@ TEST(SceneDistribution, VolumeD50IsConvertedToTheNumberMedian) {
 TEST(SceneDistribution, TableByVolumeGivesExactNumberCounts) {
   // Equal volumes of 200 um and 100 um spheres: number ratio 1 : 8, so 100 and 800 of 900.
   const auto s = sc::SizeDistribution::table({200e-6, 100e-6}, {0.5, 0.5}, sc::FractionBasis::volume);
-  sc::Random random(1);
+  spreadmap::Random random(1);
   const auto d = s.sample(900, random);
   ASSERT_EQ(d.size(), 900u);
   EXPECT_EQ(std::count(d.begin(), d.end(), 200e-6), 100);
@@ -65,7 +65,8 @@ TEST(SceneDistribution, TableByVolumeGivesExactNumberCounts) {
   const auto thirds = sc::SizeDistribution::table({1e-4, 2e-4, 3e-4}, {1, 1, 1});
   const auto t = thirds.sample(10, random);
   EXPECT_EQ(std::count(t.begin(), t.end(), 1e-4) + std::count(t.begin(), t.end(), 2e-4) +
-                std::count(t.begin(), t.end(), 3e-4), 10);
+                std::count(t.begin(), t.end(), 3e-4),
+            10);
   EXPECT_EQ(std::count(t.begin(), t.end(), 1e-4), 4);
 }
 

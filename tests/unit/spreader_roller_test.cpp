@@ -93,9 +93,9 @@ TEST(SpreaderRoller, EndFacesBoundTheLength) {
   const Roller g = sm::test::bind_with<Roller>({{"y_centre", 10e-3}});
   const double end = 45e-3, below = axis_z - R - r + delta;
   sm::WallHit<double> hit{};
-  EXPECT_TRUE(g(V{start, end - 1e-6, below}, r, 0.0, hit));                // inside the length: radial contact
-  EXPECT_FALSE(g(V{start, end + r + 1e-6, below}, r, 0.0, hit));           // beyond the length: none
-  EXPECT_FALSE(g(V{start, -25e-3 - r - 1e-6, below}, r, 0.0, hit));        // beyond the other end: none
+  EXPECT_TRUE(g(V{start, end - 1e-6, below}, r, 0.0, hit));          // inside the length: radial contact
+  EXPECT_FALSE(g(V{start, end + r + 1e-6, below}, r, 0.0, hit));     // beyond the length: none
+  EXPECT_FALSE(g(V{start, -25e-3 - r - 1e-6, below}, r, 0.0, hit));  // beyond the other end: none
   // Centre inside the cylinder's radius, half a radius beyond the end: end-face contact along +y.
   const auto face = touch(g, {start, end + 0.5 * r, axis_z - 1e-3});
   EXPECT_NEAR(face.overlap, 0.5 * r, tol_len);
@@ -110,7 +110,7 @@ TEST(SpreaderRoller, EndFacesBoundTheLength) {
 TEST(SpreaderRoller, TravelsAtUThenStops) {
   const Roller g = sm::test::bind_with<Roller>({{"omega", 12.0}, {"travel", 20e-3}});
   const auto d = sm::test::description_of(g);
-  EXPECT_DOUBLE_EQ(d.duration, 0.2);                         // 20 mm at 0.1 m/s
+  EXPECT_DOUBLE_EQ(d.duration, 0.2);  // 20 mm at 0.1 m/s
   EXPECT_DOUBLE_EQ(d.start, start);
   EXPECT_DOUBLE_EQ(d.end, start + 20e-3);
   EXPECT_DOUBLE_EQ(d.speed, U);
@@ -123,12 +123,12 @@ TEST(SpreaderRoller, TravelsAtUThenStops) {
   EXPECT_DOUBLE_EQ(pose.angle, 12.0 * 0.05);
   EXPECT_DOUBLE_EQ(pose.velocity[0], U);
   EXPECT_DOUBLE_EQ(pose.x_min, pose.reference[0] - R);
-  pose = sm::test::pose_of(g, 0.5);                          // after the end: parked, still
+  pose = sm::test::pose_of(g, 0.5);  // after the end: parked, still
   EXPECT_NEAR(pose.reference[0], start + 20e-3, 1e-15);
   EXPECT_DOUBLE_EQ(pose.angle, 12.0 * 0.2);
   EXPECT_DOUBLE_EQ(pose.velocity[0], 0.0);
   EXPECT_DOUBLE_EQ(pose.omega, 0.0);
-  pose = sm::test::pose_of(g, -1.0);                         // before the start: at rest at start
+  pose = sm::test::pose_of(g, -1.0);  // before the start: at rest at start
   EXPECT_DOUBLE_EQ(pose.reference[0], start);
   EXPECT_DOUBLE_EQ(pose.velocity[0], 0.0);
   EXPECT_DOUBLE_EQ(pose.omega, 0.0);

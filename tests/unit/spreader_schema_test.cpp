@@ -80,9 +80,12 @@ TEST(SpreaderSchema, RollerModuleComputesContactsThroughItsOps) {
   std::vector<double> f(2, 0.0), ov(2, -1), nx(2), ny(2), nz(2), vx(2), vy(2), vz(2);
   sm::Particles<double> p{};
   p.n = 2;
-  p.x = x.data(); p.y = y.data(); p.z = z.data();
+  p.x = x.data();
+  p.y = y.data();
+  p.z = z.data();
   p.vx = p.vy = p.vz = p.wx = p.wy = p.wz = zero.data();
-  p.r = r.data(); p.m = r.data();
+  p.r = r.data();
+  p.m = r.data();
   p.fx = p.fy = p.fz = p.tx = p.ty = p.tz = f.data();
   p.t = 0.0;
   sm::WallContacts<double> w{2, ov.data(), nx.data(), ny.data(), nz.data(), vx.data(), vy.data(), vz.data(), nullptr};

@@ -13,12 +13,22 @@ template <std::size_t N> nlohmann::json schema_defaults(const sm_param_v1 (&para
   nlohmann::json j = nlohmann::json::object();
   for (const auto &p : params) {
     switch (p.type) {
-      case SM_NUMBER: j[p.name] = p.def; break;
-      case SM_INTEGER: j[p.name] = static_cast<long>(p.def); break;
-      case SM_BOOLEAN: j[p.name] = p.def != 0; break;
+      case SM_NUMBER:
+        j[p.name] = p.def;
+        break;
+      case SM_INTEGER:
+        j[p.name] = static_cast<long>(p.def);
+        break;
+      case SM_BOOLEAN:
+        j[p.name] = p.def != 0;
+        break;
       case SM_ENUM:
-      case SM_STRING: j[p.name] = p.def_text ? p.def_text : ""; break;
-      case SM_TABLE: j[p.name] = nullptr; break;
+      case SM_STRING:
+        j[p.name] = p.def_text ? p.def_text : "";
+        break;
+      case SM_TABLE:
+        j[p.name] = nullptr;
+        break;
     }
   }
   return j;

@@ -35,7 +35,7 @@ void expect_gradient_matches(const BpnnConfig &config) {
     fd[i] = (m.loss(a, x, y, nullptr) - m.loss(b, x, y, nullptr)) / (2 * h);
   }
   EXPECT_LE((g - fd).norm(), 1e-6 * g.norm()) << "activation " << sm::surrogate::name_of(config.activation)
-                                               << ", regularisation " << sm::surrogate::name_of(config.regularisation);
+                                              << ", regularisation " << sm::surrogate::name_of(config.regularisation);
   EXPECT_LE((g - fd).lpNorm<Eigen::Infinity>(), 1e-6 * g.lpNorm<Eigen::Infinity>());
 }
 
@@ -95,7 +95,8 @@ TEST(SurrogateBpnn, SameSeedSameFitAndRoundTripIsBitwise) {
 TEST(SurrogateBpnn, EarlyStoppingKeepsTheBestValidationWeights) {
   const Eigen::MatrixXd x = sm::test::study_grid(), y = sm::test::study_outputs(x);
   BpnnConfig c;
-  c.units = 30, c.epochs = 2000, c.validation_share = 0.2, c.patience = 20, c.optimiser = sm::surrogate::Optimiser::adam;
+  c.units = 30, c.epochs = 2000, c.validation_share = 0.2, c.patience = 20,
+  c.optimiser = sm::surrogate::Optimiser::adam;
   c.learning_rate = 1e-2;
   BpnnModel m(c);
   const auto info = m.fit(x, y);

@@ -12,7 +12,8 @@ using sm::surrogate::Kernel;
 
 TEST(SurrogateGp, LikelihoodGradientEqualsFiniteDifferences) {
   const Eigen::MatrixXd x = sm::test::study_grid(4, 5);
-  const Eigen::MatrixXd xs = (x.rowwise() - x.colwise().mean()).array().rowwise() / Eigen::RowVector2d(0.02, 13).array();
+  const Eigen::MatrixXd xs =
+      (x.rowwise() - x.colwise().mean()).array().rowwise() / Eigen::RowVector2d(0.02, 13).array();
   const Eigen::VectorXd y = sm::test::study_outputs(x).col(1);
   const Eigen::VectorXd ys = (y.array() - y.mean()) / 5e-6;
   for (auto k : {Kernel::squared_exponential, Kernel::matern52}) {
@@ -26,7 +27,8 @@ TEST(SurrogateGp, LikelihoodGradientEqualsFiniteDifferences) {
     for (Eigen::Index i = 0; i < theta.size(); ++i) {
       Eigen::VectorXd a = theta, b = theta;
       a[i] += 1e-5, b[i] -= 1e-5;
-      const double fd = (m.negative_log_likelihood(a, xs, ys, nullptr) - m.negative_log_likelihood(b, xs, ys, nullptr)) / 2e-5;
+      const double fd =
+          (m.negative_log_likelihood(a, xs, ys, nullptr) - m.negative_log_likelihood(b, xs, ys, nullptr)) / 2e-5;
       EXPECT_NEAR(g[i], fd, 1e-6 * g.norm()) << sm::surrogate::name_of(k) << " theta " << i;
     }
   }
@@ -44,7 +46,8 @@ TEST(SurrogateGp, InterpolatesTrainingPointsWithNoiseAtLowerBound) {
     const Eigen::MatrixXd p = m.predict(x, &sd);
     // Mean at a training point = y - n^2 alpha: with n^2 = 1e-12 this is ~1e-7 of y here.
     EXPECT_LE(((p - y).array() / y.array()).abs().maxCoeff(), 1e-6) << sm::surrogate::name_of(k);
-    for (Eigen::Index c2 = 0; c2 < 2; ++c2) EXPECT_LE(sd.col(c2).maxCoeff(), 1e-4 * (y.col(c2).maxCoeff() - y.col(c2).minCoeff()));
+    for (Eigen::Index c2 = 0; c2 < 2; ++c2)
+      EXPECT_LE(sd.col(c2).maxCoeff(), 1e-4 * (y.col(c2).maxCoeff() - y.col(c2).minCoeff()));
     EXPECT_TRUE(m.info()["outputs"][0]["noise_at_lower_bound"].get<bool>());
   }
 }

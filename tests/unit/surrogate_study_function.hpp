@@ -36,7 +36,8 @@ inline Eigen::MatrixXd study_grid(int nu = 5, int nw = 9) {
 }
 inline Eigen::MatrixXd study_outputs(const Eigen::MatrixXd &x) {
   Eigen::MatrixXd y(x.rows(), 2);
-  for (Eigen::Index r = 0; r < x.rows(); ++r) y(r, 0) = study_vs(x(r, 0), x(r, 1)), y(r, 1) = study_rq(x(r, 0), x(r, 1));
+  for (Eigen::Index r = 0; r < x.rows(); ++r)
+    y(r, 0) = study_vs(x(r, 0), x(r, 1)), y(r, 1) = study_rq(x(r, 0), x(r, 1));
   return y;
 }
 

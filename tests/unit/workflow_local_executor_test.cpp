@@ -1,4 +1,4 @@
-// The local executor's pool (workflow/local_executor.hpp), with small stand-ins for the cases: each
+// The local executor's pool (workflow/executors/local_executor.hpp), with small stand-ins for the cases: each
 // job runs exactly once on a pool of exactly --jobs threads; a failure stops the hand-out, the
 // running cases finish and are recorded, and then the failure is thrown; a stop request leaves the
 // unstarted cases unrun.
@@ -15,7 +15,7 @@
 
 #include "core/error.hpp"
 #include "core/stop.hpp"
-#include "workflow/local_executor.hpp"
+#include "workflow/executors/local_executor.hpp"
 #include "workflow/stage.hpp"
 
 namespace sm = spreadmap;
@@ -205,7 +205,8 @@ TEST(LocalExecutor, AStopRequestLeavesTheUnstartedJobsUnrun) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
     while (!sm::stop_requested() && std::chrono::steady_clock::now() < deadline)
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
-    return failed(job, sm::exit_interrupted, "interrupted: c001 saved its checkpoint; run the same command again to resume");
+    return failed(job, sm::exit_interrupted,
+                  "interrupted: c001 saved its checkpoint; run the same command again to resume");
   });
   try {
     executor.run_cases(r.batch, r.ctx);

@@ -41,8 +41,8 @@ double kinetic_energy(const std::vector<Sphere> &s) {
 }
 
 struct Collision {
-  double energy_in = 0;      // kinetic energy before [J]
-  double max_mismatch = 0;   // largest |F_0 + F_1| / |F_0| over the steps
+  double energy_in = 0;     // kinetic energy before [J]
+  double max_mismatch = 0;  // largest |F_0 + F_1| / |F_0| over the steps
 };
 
 // Two unequal spheres colliding; runs until they separate. Returns the integrator.
@@ -187,12 +187,14 @@ TYPED_TEST(ContactConformance, FiniteAcrossTheSchemaRanges) {
             const sm::ContactState<double> c{{0, 1, 0}, overlap, -5, {v_t, 0, 0}, {w, 0, w}, m, 1e-4, 1e-7};
             double hd[3] = {1e-6, 0, 0};
             const auto f = law(c, hd);
-            EXPECT_TRUE(std::isfinite(f.normal) && std::isfinite(sm::norm(f.tangent)) && std::isfinite(sm::norm(f.torque)));
-            const sm::ContactState<float> cf{{0, 1, 0}, float(overlap), -5, {float(v_t), 0, 0}, {float(w), 0, float(w)},
-                                             float(m), 1e-4f, 1e-7f};
+            EXPECT_TRUE(std::isfinite(f.normal) && std::isfinite(sm::norm(f.tangent)) &&
+                        std::isfinite(sm::norm(f.torque)));
+            const sm::ContactState<float> cf{
+                {0, 1, 0}, float(overlap), -5, {float(v_t), 0, 0}, {float(w), 0, float(w)}, float(m), 1e-4f, 1e-7f};
             float hf[3] = {1e-6f, 0, 0};
             const auto g = law(cf, hf);
-            EXPECT_TRUE(std::isfinite(g.normal) && std::isfinite(sm::norm(g.tangent)) && std::isfinite(sm::norm(g.torque)));
+            EXPECT_TRUE(std::isfinite(g.normal) && std::isfinite(sm::norm(g.tangent)) &&
+                        std::isfinite(sm::norm(g.torque)));
             for (int q = 0; q < TypeParam::history; ++q) EXPECT_TRUE(std::isfinite(hd[q]) && std::isfinite(hf[q]));
           }
   }

@@ -70,7 +70,8 @@ TEST_P(Incline, AboveTheSlipLimitItSlidesAndSpinsUp) {
   const double alpha = (s.w_end.y - s.w_mark.y) / span, spin = 2.5 * mu * g * std::cos(theta) / radius;
   EXPECT_NEAR(alpha, spin, 0.01 * spin) << "(5/2) mu g cos(theta) / r";
 }
-INSTANTIATE_TEST_SUITE_P(Slider, Incline, ::testing::Values(std::string("stick"), std::string("viscous"), std::string("coulomb")),
+INSTANTIATE_TEST_SUITE_P(Slider, Incline,
+                         ::testing::Values(std::string("stick"), std::string("viscous"), std::string("coulomb")),
                          [](const ::testing::TestParamInfo<std::string> &info) { return info.param; });
 
 // An oblique impact on the floor at v_n = 0.5 m/s with tangential speed v_t and no spin, no gravity.
@@ -79,8 +80,8 @@ struct Bounce {
   V3 v, w;
 };
 Bounce oblique(const sm::HookeSlider &law, double v_t) {
-  Integrator<sm::HookeSlider> run(law, {sm::test::study_sphere({0, 0, radius}, {v_t, 0, -0.5})},
-                                  sm::pi / omega0 / 1000, {0, 0, 0}, {floor_plane});
+  Integrator<sm::HookeSlider> run(law, {sm::test::study_sphere({0, 0, radius}, {v_t, 0, -0.5})}, sm::pi / omega0 / 1000,
+                                  {0, 0, 0}, {floor_plane});
   bool touched = false;
   for (int k = 0; k < 100000; ++k) {
     run.step();
@@ -107,7 +108,8 @@ TEST_P(GrossSliding, TangentialImpulseIsMuTimesTheIntegralOfAbsoluteNormalForce)
   const Bounce b = oblique(sm::test::bind_law<sm::HookeSlider>({{"restitution", eps}, {"clamp_normal", clamp}}), v_t);
   const double expected = -mu * 0.5 * factor;
   EXPECT_NEAR(b.dv_t, expected, 0.01 * std::abs(expected));
-  EXPECT_NEAR(b.r_dw, -2.5 * b.dv_t, 0.01 * std::abs(2.5 * b.dv_t)) << "r dw = (5/2) |dv_t|: torque of the same impulse";
+  EXPECT_NEAR(b.r_dw, -2.5 * b.dv_t, 0.01 * std::abs(2.5 * b.dv_t))
+      << "r dw = (5/2) |dv_t|: torque of the same impulse";
 }
 INSTANTIATE_TEST_SUITE_P(Restitution, GrossSliding,
                          ::testing::Values(Case{0.8, false}, Case{0.5, false}, Case{0.8, true}, Case{0.5, true}),

@@ -4,12 +4,11 @@
 // that round-off for a slip direction would brake the impact (the coulomb slider gave restitution
 // 0.478 instead of 0.5). In double and in float, two spheres along each axis (at the origin and where
 // a spreading scene has them) and a sphere on a plane normal to each axis: the rebound is the
-// frictionless one to round-off (1e-9 in double, 4 ulps in float), and the frictionless one is the set restitution (within the integration
-// error of dt = T/1000, as in contact_hooke_slider_test).
-// Not here: impacts along an oblique line. Their discrete motion really leaves the line: each kick and
-// drift rounds every coordinate on its own, a random walk of tens of ulps of the speed (more far from
-// the origin) that is still there where v_n vanishes, at the turning point: a real slip of the
-// discrete system, not the round-off of the contact's kinematics.
+// frictionless one to round-off (1e-9 in double, 4 ulps in float), and the frictionless one is the set restitution
+// (within the integration error of dt = T/1000, as in contact_hooke_slider_test). Not here: impacts along an oblique
+// line. Their discrete motion really leaves the line: each kick and drift rounds every coordinate on its own, a random
+// walk of tens of ulps of the speed (more far from the origin) that is still there where v_n vanishes, at the turning
+// point: a real slip of the discrete system, not the round-off of the contact's kinematics.
 #include "plugins/contact/hooke_slider/hooke_slider.hpp"
 #include "verification/contact_support.hpp"
 
@@ -104,7 +103,8 @@ class HeadOn : public ::testing::TestWithParam<std::string> {};  // the slider v
 TEST_P(HeadOn, RestitutionIsTheFrictionlessOneInDouble) { expect_frictionless_rebound<double>(GetParam()); }
 TEST_P(HeadOn, RestitutionIsTheFrictionlessOneInFloat) { expect_frictionless_rebound<float>(GetParam()); }
 
-INSTANTIATE_TEST_SUITE_P(Slider, HeadOn, ::testing::Values(std::string("stick"), std::string("viscous"), std::string("coulomb")),
+INSTANTIATE_TEST_SUITE_P(Slider, HeadOn,
+                         ::testing::Values(std::string("stick"), std::string("viscous"), std::string("coulomb")),
                          [](const ::testing::TestParamInfo<std::string> &info) { return info.param; });
 
 }  // namespace

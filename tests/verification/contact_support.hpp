@@ -25,12 +25,21 @@ template <class Law> Values values_for(const nlohmann::json &overrides = nlohman
   for (const sm_param_v1 &p : Law::params) {
     if (p.required) continue;
     switch (p.type) {
-      case SM_NUMBER: j[p.name] = p.def; break;
-      case SM_INTEGER: j[p.name] = static_cast<long>(p.def); break;
-      case SM_BOOLEAN: j[p.name] = p.def != 0; break;
+      case SM_NUMBER:
+        j[p.name] = p.def;
+        break;
+      case SM_INTEGER:
+        j[p.name] = static_cast<long>(p.def);
+        break;
+      case SM_BOOLEAN:
+        j[p.name] = p.def != 0;
+        break;
       case SM_ENUM:
-      case SM_STRING: j[p.name] = p.def_text; break;
-      case SM_TABLE: break;
+      case SM_STRING:
+        j[p.name] = p.def_text;
+        break;
+      case SM_TABLE:
+        break;
     }
   }
   for (const auto &[key, value] : overrides.items()) j[key] = value;
@@ -107,25 +116,60 @@ template <class Law, class Real = double> class Integrator {
     const std::size_t n = s_.size();
     for (std::size_t i = 0; i < n; ++i) {
       const Sphere &s = s_[i];
-      x_[i] = Real(s.x.x); y_[i] = Real(s.x.y); z_[i] = Real(s.x.z);
-      vx_[i] = Real(s.v.x); vy_[i] = Real(s.v.y); vz_[i] = Real(s.v.z);
-      wx_[i] = Real(s.w.x); wy_[i] = Real(s.w.y); wz_[i] = Real(s.w.z);
-      r_[i] = Real(s.r); m_[i] = Real(s.m);
+      x_[i] = Real(s.x.x);
+      y_[i] = Real(s.x.y);
+      z_[i] = Real(s.x.z);
+      vx_[i] = Real(s.v.x);
+      vy_[i] = Real(s.v.y);
+      vz_[i] = Real(s.v.z);
+      wx_[i] = Real(s.w.x);
+      wy_[i] = Real(s.w.y);
+      wz_[i] = Real(s.w.z);
+      r_[i] = Real(s.r);
+      m_[i] = Real(s.m);
       fx_[i] = fy_[i] = fz_[i] = tx_[i] = ty_[i] = tz_[i] = 0;
     }
-    Particles<Real> p{static_cast<std::uint32_t>(n), x_.data(), y_.data(), z_.data(), vx_.data(), vy_.data(),
-                      vz_.data(), wx_.data(), wy_.data(), wz_.data(), r_.data(), m_.data(), fx_.data(), fy_.data(),
-                      fz_.data(), tx_.data(), ty_.data(), tz_.data(), {-1, -1, -1}, {1, 1, 1}, {0, 0, 0}, Real(dt_),
+    Particles<Real> p{static_cast<std::uint32_t>(n),
+                      x_.data(),
+                      y_.data(),
+                      z_.data(),
+                      vx_.data(),
+                      vy_.data(),
+                      vz_.data(),
+                      wx_.data(),
+                      wy_.data(),
+                      wz_.data(),
+                      r_.data(),
+                      m_.data(),
+                      fx_.data(),
+                      fy_.data(),
+                      fz_.data(),
+                      tx_.data(),
+                      ty_.data(),
+                      tz_.data(),
+                      {-1, -1, -1},
+                      {1, 1, 1},
+                      {0, 0, 0},
+                      Real(dt_),
                       Real(t_)};
     PairList<Real> list{start_.data(), nbr_.data(), pair_hist_.data()};
     pair_loop(law_, p, list);
     for (std::size_t k = 0; k < walls_.size(); ++k) {
       for (std::size_t i = 0; i < n; ++i) {
         w_overlap_[i] = Real(wall_overlap(i, k));
-        w_nx_[i] = Real(walls_[k].normal.x); w_ny_[i] = Real(walls_[k].normal.y); w_nz_[i] = Real(walls_[k].normal.z);
+        w_nx_[i] = Real(walls_[k].normal.x);
+        w_ny_[i] = Real(walls_[k].normal.y);
+        w_nz_[i] = Real(walls_[k].normal.z);
       }
-      WallContacts<Real> w{static_cast<std::uint32_t>(n), w_overlap_.data(), w_nx_.data(), w_ny_.data(), w_nz_.data(),
-                             w_vx_.data(), w_vy_.data(), w_vz_.data(), wall_hist_[k].data()};
+      WallContacts<Real> w{static_cast<std::uint32_t>(n),
+                           w_overlap_.data(),
+                           w_nx_.data(),
+                           w_ny_.data(),
+                           w_nz_.data(),
+                           w_vx_.data(),
+                           w_vy_.data(),
+                           w_vz_.data(),
+                           wall_hist_[k].data()};
       wall_loop(law_, p, w);
     }
   }

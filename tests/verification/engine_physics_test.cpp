@@ -118,8 +118,8 @@ TEST(EngineDynamics, ElasticFrictionlessBoxConservesEnergy) {
     for (std::size_t i = 0; i < q.size(); ++i) {
       e += 0.5 * q.m[i] * (q.vx[i] * q.vx[i] + q.vy[i] * q.vy[i] + q.vz[i] * q.vz[i]) + q.m[i] * g * q.z[i];
       for (std::size_t j = i + 1; j < q.size(); ++j) {
-        const double d = std::sqrt(std::pow(q.x[i] - q.x[j], 2) + std::pow(q.y[i] - q.y[j], 2) +
-                                   std::pow(q.z[i] - q.z[j], 2));
+        const double d =
+            std::sqrt(std::pow(q.x[i] - q.x[j], 2) + std::pow(q.y[i] - q.y[j], 2) + std::pow(q.z[i] - q.z[j], 2));
         const double overlap = q.r[i] + q.r[j] - d;
         if (overlap > 0) e += 0.5 * stiffness * overlap * overlap;
       }
@@ -224,7 +224,8 @@ Growth fcc_growth(double restitution, double factor, int steps) {
   for (int i = 0; i < cells; ++i)
     for (int j = 0; j < cells; ++j)
       for (int k = 0; k < cells; ++k)
-        for (const auto &b : basis) lattice.push_back({(i + b[0] + 0.25) * a, (j + b[1] + 0.25) * a, (k + b[2] + 0.25) * a});
+        for (const auto &b : basis)
+          lattice.push_back({(i + b[0] + 0.25) * a, (j + b[1] + 0.25) * a, (k + b[2] + 0.25) * a});
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   const double kick = 1e-4 * (2 * r - gap);

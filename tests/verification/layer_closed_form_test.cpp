@@ -33,8 +33,8 @@ struct Layer {
     z.push_back(::r);  // resting on the substrate at z = 0
     r.push_back(::r);
   }
-  layer::LayerResult characterise(double x0, double x1, double y0, double y1, double cell,
-                                  double strip_lo = 0, double strip_hi = 0) const {
+  layer::LayerResult characterise(double x0, double x1, double y0, double y1, double cell, double strip_lo = 0,
+                                  double strip_hi = 0) const {
     sm_layer_input_v1 in{};
     in.n = x.size();
     in.x = x.data();

@@ -51,7 +51,8 @@ sa::Report fit_and_score(const std::string &name, const Study &s) {
   auto m = sa::PluginModel::create(plugin(name), default_params(plugin(name)));
   Eigen::MatrixXd xt(s.split.train.size(), 2), yt(s.split.train.size(), 2);
   for (std::size_t i = 0; i < s.split.train.size(); ++i)
-    xt.row(Eigen::Index(i)) = s.x.row(Eigen::Index(s.split.train[i])), yt.row(Eigen::Index(i)) = s.y.row(Eigen::Index(s.split.train[i]));
+    xt.row(Eigen::Index(i)) = s.x.row(Eigen::Index(s.split.train[i])),
+    yt.row(Eigen::Index(i)) = s.y.row(Eigen::Index(s.split.train[i]));
   m->fit(xt, yt);
   return sa::make_report(*m, s.x, s.y, s.split, {"vs", "rq"});
 }
@@ -74,7 +75,8 @@ TEST(SurrogateStudy, GpWithDefaultsIsWithinOnePercent) {
   const Study s;
   const sa::Report r = fit_and_score("gp", s);
   for (const auto &o : r.outputs) {
-    std::printf("gp %s: nrmse train %.5f %% test %.5f %%, R test %.7f\n", o.name.c_str(), o.nrmse_train, o.nrmse_test, o.r_test);
+    std::printf("gp %s: nrmse train %.5f %% test %.5f %%, R test %.7f\n", o.name.c_str(), o.nrmse_train, o.nrmse_test,
+                o.r_test);
     EXPECT_LE(o.nrmse_test, 1.0) << o.name;
   }
 }
@@ -92,7 +94,8 @@ TEST(SurrogateStudy, SavedModelLoadedAgainPredictsBitwise) {
     sa::ModelFile f;
     f.plugin = "surrogate/" + name, f.plugin_version = p->version, f.params = used, f.state = m->state();
     f.inputs = {{"U", "m/s", 0.04, 0.1}, {"omega", "rad/s", -20, 20}};
-    f.outputs = {{"vs", "m^2/s", s.y.col(0).minCoeff(), s.y.col(0).maxCoeff()}, {"rq", "m", s.y.col(1).minCoeff(), s.y.col(1).maxCoeff()}};
+    f.outputs = {{"vs", "m^2/s", s.y.col(0).minCoeff(), s.y.col(0).maxCoeff()},
+                 {"rq", "m", s.y.col(1).minCoeff(), s.y.col(1).maxCoeff()}};
     f.training = {{"rows", 45}};
     sa::save_model_json(path, f);
 
@@ -117,10 +120,13 @@ namespace {
 double ripple_vs(double u, double w) {
   return u * 260e-6 * (1 + 0.1 * std::sin(2 * M_PI * (u - 0.04) / 0.04)) * (1 + 0.05 * std::tanh((w + 2) / 15));
 }
-double ripple_rq(double u, double w) { return 100e-6 * (1 + 0.1 * std::cos(2 * M_PI * (u - 0.04) / 0.045) + 0.03 * (w + 3) / 20); }
+double ripple_rq(double u, double w) {
+  return 100e-6 * (1 + 0.1 * std::cos(2 * M_PI * (u - 0.04) / 0.045) + 0.03 * (w + 3) / 20);
+}
 Eigen::MatrixXd ripple(const Eigen::MatrixXd &x) {
   Eigen::MatrixXd y(x.rows(), 2);
-  for (Eigen::Index r = 0; r < x.rows(); ++r) y(r, 0) = ripple_vs(x(r, 0), x(r, 1)), y(r, 1) = ripple_rq(x(r, 0), x(r, 1));
+  for (Eigen::Index r = 0; r < x.rows(); ++r)
+    y(r, 0) = ripple_vs(x(r, 0), x(r, 1)), y(r, 1) = ripple_rq(x(r, 0), x(r, 1));
   return y;
 }
 }  // namespace
@@ -144,8 +150,8 @@ TEST(SurrogateStudy, AdaptiveDesignMatchesTheFullFactorialWithHalfTheCases) {
     return Eigen::Vector2d(ripple_vs(v[0], v[1]), ripple_rq(v[0], v[1])).eval();
   };
   sa::AdaptiveOptions o;
-  o.budget = 22;  // at most half of 45
-  o.target_loo_nrmse = 1.0;  // [%], held for 3 consecutive fits (the default)
+  o.budget = 22;                                                    // at most half of 45
+  o.target_loo_nrmse = 1.0;                                         // [%], held for 3 consecutive fits (the default)
   const Eigen::MatrixXd candidates = sm::test::study_grid(13, 17);  // U step 5 mm/s, omega step 2.5 rad/s
   const sa::AdaptiveResult r = sa::adaptive_design(candidates, make, evaluate, o);
   auto adaptive = make();

@@ -40,7 +40,8 @@ struct Entry {
 };
 
 std::string substitute(std::string s, const std::string &from, const std::string &to) {
-  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size())) s.replace(p, from.size(), to);
+  for (std::size_t p = s.find(from); p != std::string::npos; p = s.find(from, p + to.size()))
+    s.replace(p, from.size(), to);
   return s;
 }
 
@@ -53,7 +54,8 @@ Entry read_entry(const fs::path &file) {
   Entry e;
   e.file = file;
   std::ifstream in(file);
-  const std::regex directive(R"(^# (expect-exit|expect-key|expect-at|expect-file|expect-text|expect-errors|with-env|with-command): (.*)$)");
+  const std::regex directive(
+      R"(^# (expect-exit|expect-key|expect-at|expect-file|expect-text|expect-errors|with-env|with-command): (.*)$)");
   for (std::string line; std::getline(in, line) && line.rfind('#', 0) == 0;) {
     std::smatch m;
     if (!std::regex_match(line, m, directive)) continue;
@@ -114,8 +116,8 @@ TEST(CatalogueSize, EveryEntryStatesItsExpectations) {
 
 TEST_P(Catalogue, IsRejectedWithAClearMessage) {
   const Entry &e = GetParam();
-  const fs::path out = fs::temp_directory_path() / ("spreadmap_catalogue_" + std::to_string(::getpid()) + "_" +
-                                                    e.file.stem().string());
+  const fs::path out =
+      fs::temp_directory_path() / ("spreadmap_catalogue_" + std::to_string(::getpid()) + "_" + e.file.stem().string());
   fs::remove_all(out);
   t::Command cmd;
   cmd.env = e.env;
@@ -132,12 +134,14 @@ TEST_P(Catalogue, IsRejectedWithAClearMessage) {
   const std::string named = (e.names.empty() ? e.file : e.file.parent_path() / e.names).string();
   if (!e.at.empty()) {
     EXPECT_NE(r.err.find(named + ":" + e.at + ": " + e.key), std::string::npos)
-        << "expected '" << named << ":" << e.at << ": " << e.key << "' in\n" << r.err;
+        << "expected '" << named << ":" << e.at << ": " << e.key << "' in\n"
+        << r.err;
   } else {
     EXPECT_NE(r.err.find(named), std::string::npos) << "the message does not name " << named << ":\n" << r.err;
     EXPECT_NE(r.err.find(e.key), std::string::npos) << "the message does not name " << e.key << ":\n" << r.err;
   }
-  for (const auto &text : e.texts) EXPECT_NE(r.err.find(text), std::string::npos) << "missing '" << text << "' in\n" << r.err;
+  for (const auto &text : e.texts)
+    EXPECT_NE(r.err.find(text), std::string::npos) << "missing '" << text << "' in\n" << r.err;
   if (e.errors >= 0) {
     EXPECT_EQ(count_errors(r.err), std::size_t(e.errors)) << r.err;
   }

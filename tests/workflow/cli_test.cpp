@@ -58,7 +58,8 @@ TEST(Cli, PluginsListsEveryKind) {
     seen.insert(kind);
   }
   EXPECT_EQ(seen, kinds);
-  for (const char *name : {"hooke_slider", "roller", "blade", "layer", "bpnn", "gp"}) EXPECT_TRUE(contains(r.out, name)) << name;
+  for (const char *name : {"hooke_slider", "roller", "blade", "layer", "bpnn", "gp"})
+    EXPECT_TRUE(contains(r.out, name)) << name;
 }
 
 TEST(Cli, PluginsAsJsonCarryTheWholeSchema) {
@@ -72,8 +73,10 @@ TEST(Cli, PluginsAsJsonCarryTheWholeSchema) {
     EXPECT_TRUE(fs::exists(p.at("file").get<std::string>())) << p.dump();
     EXPECT_FALSE(p.at("version").get<std::string>().empty());
     for (const auto &param : p.at("params")) {
-      for (const char *field : {"name", "type", "unit", "doc", "required"}) EXPECT_TRUE(param.contains(field)) << param.dump();
-      EXPECT_FALSE(param.at("doc").get<std::string>().empty()) << p.at("name") << "." << param.at("name") << " has no doc";
+      for (const char *field : {"name", "type", "unit", "doc", "required"})
+        EXPECT_TRUE(param.contains(field)) << param.dump();
+      EXPECT_FALSE(param.at("doc").get<std::string>().empty())
+          << p.at("name") << "." << param.at("name") << " has no doc";
       if (!param.at("required").get<bool>() && param.at("type") != "table") {
         EXPECT_TRUE(param.contains("default")) << param.dump();
       }
@@ -170,7 +173,8 @@ TEST(CliPluginFaults, StaleCopyFirstInThePathWins) {
 }
 
 TEST(CliPluginFaults, FirstCopyInThePathWinsAndTheShadowIsLogged) {
-  const auto r = cli({"plugins", "fixture_law"}, {{"SPREADMAP_PLUGIN_PATH", fixture("shadow") + ":" + fixture("good")}});
+  const auto r =
+      cli({"plugins", "fixture_law"}, {{"SPREADMAP_PLUGIN_PATH", fixture("shadow") + ":" + fixture("good")}});
   ASSERT_EQ(r.exit_code, 0) << r.describe();
   EXPECT_TRUE(contains(r.out, "contact/fixture_law 2.0.0")) << r.out;
   EXPECT_TRUE(contains(r.out, "file: " + fixture("shadow") + "/contact/fixture_law.so")) << r.out;

@@ -54,8 +54,8 @@ YAML::Node at(YAML::Node root, const Path &p) {
 }
 
 struct Mutant {
-  std::string what;   // "scene.powder.count = abc"
-  std::string key;    // the key the mutation touched: the message must name it
+  std::string what;  // "scene.powder.count = abc"
+  std::string key;   // the key the mutation touched: the message must name it
   YAML::Node doc;
 };
 
@@ -109,7 +109,8 @@ TEST_P(Mutation, EveryMutantGetsACleanAnswer) {
   const fs::path file = dir / GetParam().filename();
   // scene files a workflow names are relative to it
   for (const auto &e : fs::directory_iterator(GetParam().parent_path()))
-    if (e.is_regular_file() && e.path().extension() != ".yaml") fs::copy_file(e.path(), dir / e.path().filename(), fs::copy_options::overwrite_existing);
+    if (e.is_regular_file() && e.path().extension() != ".yaml")
+      fs::copy_file(e.path(), dir / e.path().filename(), fs::copy_options::overwrite_existing);
   std::size_t refused = 0;
   std::vector<std::string> accepted;
   for (const auto &m : mutants(GetParam())) {
@@ -132,8 +133,8 @@ TEST_P(Mutation, EveryMutantGetsACleanAnswer) {
     EXPECT_NE(r.err.find(file.string()), std::string::npos) << "the message does not name the file:\n" << r.err;
     EXPECT_NE(r.err.find(m.key), std::string::npos) << "the message does not name " << m.key << ":\n" << r.err;
   }
-  std::printf("%s: %zu mutants refused with a clear message, %zu still valid:\n", GetParam().filename().c_str(), refused,
-              accepted.size());
+  std::printf("%s: %zu mutants refused with a clear message, %zu still valid:\n", GetParam().filename().c_str(),
+              refused, accepted.size());
   for (const auto &a : accepted) std::printf("  %s\n", a.c_str());
   EXPECT_GT(refused, accepted.size()) << "most mutations must be refused";
   fs::remove_all(dir);

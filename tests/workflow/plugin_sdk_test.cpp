@@ -1,9 +1,8 @@
 // The out-of-tree plugins (a contact law and a spreader): `cmake --install` of this build into a
-// fresh prefix, then the samples in tests/plugin_sdk/ configured with find_package(spreadmap) against that prefix only, built, and
-// loaded by the installed binary through SPREADMAP_PLUGIN_PATH, which must list its schema. The
-// installed binary must also find the installed in-tree plugins without any variable. The plugin
-// compiles with the project's warnings (-Wall -Wextra, from the installed SpreadmapWarnings.cmake)
-// and prints none.
+// fresh prefix, then the samples in tests/plugin_sdk/ configured with find_package(spreadmap) against that prefix only,
+// built, and loaded by the installed binary through SPREADMAP_PLUGIN_PATH, which must list its schema. The installed
+// binary must also find the installed in-tree plugins without any variable. The plugin compiles with the project's
+// warnings (-Wall -Wextra, from the installed SpreadmapWarnings.cmake) and prints none.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -21,7 +20,8 @@ bool contains(const std::string &text, const std::string &part) { return text.fi
 
 t::Outcome cmake(std::vector<std::string> args) {
   // a clean environment for the nested build: no flags or prefixes from the outer one
-  return t::run({std::move(args), SPREADMAP_CMAKE_COMMAND, {{"CXXFLAGS", ""}, {"LDFLAGS", ""}, {"CMAKE_PREFIX_PATH", ""}}, {}});
+  return t::run(
+      {std::move(args), SPREADMAP_CMAKE_COMMAND, {{"CXXFLAGS", ""}, {"LDFLAGS", ""}, {"CMAKE_PREFIX_PATH", ""}}, {}});
 }
 
 }  // namespace
@@ -36,8 +36,8 @@ TEST(OutOfTreePlugin, BuildsAgainstTheInstalledSdkAndLoads) {
   for (const char *f : {"bin/spreadmap", "include/spreadmap/abi.h", "include/spreadmap/contact.hpp",
                         "lib/cmake/spreadmap/spreadmapConfig.cmake", "lib/cmake/spreadmap/spreadmapConfigVersion.cmake",
                         "lib/cmake/spreadmap/spreadmapTargets.cmake", "lib/cmake/spreadmap/SpreadmapPlugin.cmake",
-                        "lib/cmake/spreadmap/SpreadmapWarnings.cmake",
-                        "lib/spreadmap/plugins/contact/hooke_slider.so", "lib/spreadmap/plugins/spreader/roller.so"})
+                        "lib/cmake/spreadmap/SpreadmapWarnings.cmake", "lib/spreadmap/plugins/contact/hooke_slider.so",
+                        "lib/spreadmap/plugins/spreader/roller.so"})
     EXPECT_TRUE(fs::exists(prefix / f)) << f << " is not installed";
 
   const auto configure = cmake({"-S", SPREADMAP_SOURCE_DIR "/tests/plugin_sdk", "-B", build.string(),

@@ -26,8 +26,8 @@ std::string slurp(const fs::path &p) {
 
 fs::path fresh_dir() {
   static std::atomic<int> counter{0};
-  const fs::path d = fs::temp_directory_path() /
-                     ("spreadmap_child_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  const fs::path d =
+      fs::temp_directory_path() / ("spreadmap_child_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
@@ -38,8 +38,8 @@ fs::path fresh_dir() {
 fs::path spreadmap_binary() { return fs::path(SPREADMAP_BINARY_DIR) / "bin" / "spreadmap"; }
 
 std::string Outcome::describe() const {
-  return (exited ? "exit " + std::to_string(exit_code) : "signal " + std::to_string(signal)) + "\n--- stderr:\n" +
-         err + "--- stdout:\n" + out;
+  return (exited ? "exit " + std::to_string(exit_code) : "signal " + std::to_string(signal)) + "\n--- stderr:\n" + err +
+         "--- stdout:\n" + out;
 }
 
 Child::Child(const Command &command) : dir_(fresh_dir()) {
@@ -121,9 +121,9 @@ Outcome Child::wait() {
 Outcome run(const Command &command) { return Child(command).wait(); }
 
 std::string crash_marker(const std::string &err) {
-  for (const char *m : {"AddressSanitizer", "LeakSanitizer", "UndefinedBehaviorSanitizer", "runtime error:",
-                        "terminate called", "Segmentation fault", "core dumped", "[json.exception", "yaml-cpp:",
-                        "bad_any_cast", "std::bad_alloc", "basic_string"})
+  for (const char *m : {"AddressSanitizer", "LeakSanitizer", "UndefinedBehaviorSanitizer",
+                        "runtime error:", "terminate called", "Segmentation fault", "core dumped", "[json.exception",
+                        "yaml-cpp:", "bad_any_cast", "std::bad_alloc", "basic_string"})
     if (err.find(m) != std::string::npos) return m;
   return "";
 }

@@ -14,10 +14,10 @@ namespace spreadmap::test {
 namespace fs = std::filesystem;
 
 struct Command {
-  std::vector<std::string> args;             // without the program
-  fs::path program;                          // empty = spreadmap_binary()
-  std::map<std::string, std::string> env;    // set (or overridden) in the child's environment
-  fs::path cwd;                              // empty = the test's
+  std::vector<std::string> args;           // without the program
+  fs::path program;                        // empty = spreadmap_binary()
+  std::map<std::string, std::string> env;  // set (or overridden) in the child's environment
+  fs::path cwd;                            // empty = the test's
 };
 
 struct Outcome {

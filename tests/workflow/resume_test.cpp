@@ -122,7 +122,8 @@ TEST(KillAndResume, FinishedCasesAreNeverRecomputedAndNoPartialFileIsLeft) {
   std::map<std::string, FileId> kept;
   std::map<std::string, nlohmann::json> timings;
   for (const auto &id : done) {
-    for (const char *f : {"case.json", "state.vtp", "scene.json"}) kept[id + "/" + f] = identify(run / "cases" / id / f);
+    for (const char *f : {"case.json", "state.vtp", "scene.json"})
+      kept[id + "/" + f] = identify(run / "cases" / id / f);
     timings[id] = manifest_case(run, id);
     EXPECT_EQ(timings[id].value("status", ""), "done") << timings[id].dump();
   }
@@ -157,8 +158,8 @@ TEST(KillAndResume, FinishedCasesAreNeverRecomputedAndNoPartialFileIsLeft) {
   const auto cases_before = snapshot(run / "cases");
   const t::Outcome third = t::run(command);
   ASSERT_EQ(third.exit_code, 0) << third.describe();
-  EXPECT_TRUE(contains(third.err, std::to_string(n_cases) + " cases, 0 to run, " + std::to_string(n_cases) +
-                                      " finished already"))
+  EXPECT_TRUE(contains(third.err,
+                       std::to_string(n_cases) + " cases, 0 to run, " + std::to_string(n_cases) + " finished already"))
       << third.err;
   EXPECT_EQ(snapshot(run / "cases"), cases_before);
   fs::remove_all(run);

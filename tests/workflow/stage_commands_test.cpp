@@ -65,7 +65,8 @@ TEST_F(StageCommands, CharacteriseASphereAsJsonMatchesItsClosedForm) {
 
 TEST_F(StageCommands, CharacteriseAnEmptyRegionReportsUndefinedAsNull) {
   std::ofstream(dir_ / "layer.csv") << "x,y,z,radius\n1e-3,1e-3,125e-6,125e-6\n";
-  const auto r = spreadmap({"characterise", (dir_ / "layer.csv").string(), "--region", "10mm:12mm,0:2mm", "--format", "json"});
+  const auto r =
+      spreadmap({"characterise", (dir_ / "layer.csv").string(), "--region", "10mm:12mm,0:2mm", "--format", "json"});
   ASSERT_EQ(r.exit_code, 0) << r.describe();
   const auto j = json_of(r);
   EXPECT_EQ(j["mean_height"].get<double>(), 0.0);
@@ -83,7 +84,8 @@ TEST_F(StageCommands, TrainMapAndQueryOnAUsersTable) {
     std::ofstream csv(dir_ / "data.csv");
     csv.precision(17);
     csv << "case,U,omega,Vs,Rq\n";
-    for (Eigen::Index i = 0; i < x.rows(); ++i) csv << "c" << i << "," << x(i, 0) << "," << x(i, 1) << "," << y(i, 0) << "," << y(i, 1) << "\n";
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      csv << "c" << i << "," << x(i, 0) << "," << x(i, 1) << "," << y(i, 0) << "," << y(i, 1) << "\n";
   }
   const fs::path model_dir = dir_ / "gp";
   const auto trained = spreadmap({"train", (dir_ / "data.csv").string(), "--inputs", "U,omega", "--outputs", "vs,rq",
@@ -117,7 +119,8 @@ TEST_F(StageCommands, TrainMapAndQueryOnAUsersTable) {
   for (int i = 0; i < 31; ++i)
     for (int k = 0; k < 41; ++k) {
       const double u = 0.04 + 0.06 * i / 30, w = -20 + 40.0 * k / 40;
-      if (t::study_rq(u, w) <= 105e-6 && t::study_vs(u, w) > best_vs) best_vs = t::study_vs(u, w), best_u = u, best_w = w;
+      if (t::study_rq(u, w) <= 105e-6 && t::study_vs(u, w) > best_vs)
+        best_vs = t::study_vs(u, w), best_u = u, best_w = w;
     }
   // grid steps: 2 mm/s in U, 1 rad/s in omega
   EXPECT_NEAR(best["inputs"]["U"].get<double>(), best_u, 0.06 / 30 * 1.01) << best.dump();
@@ -139,7 +142,8 @@ TEST_F(StageCommands, RenderAStateAtTheRequestedSize) {
     for (int i = 0; i < 40; ++i) csv << 0.3e-3 * (i % 10) << "," << 0.3e-3 * (i / 10) << ",1.25e-4,1.25e-4\n";
   }
   const fs::path png = dir_ / "heap.png";
-  const auto r = spreadmap({"render", (dir_ / "heap.csv").string(), "--out", png.string(), "--width", "800", "--title", "heap"});
+  const auto r =
+      spreadmap({"render", (dir_ / "heap.csv").string(), "--out", png.string(), "--width", "800", "--title", "heap"});
 #ifndef SPREADMAP_TEST_FIGURES
   // a build without VTK says so and names the fix
   EXPECT_EQ(r.exit_code, 2) << r.describe();
@@ -202,7 +206,8 @@ TEST_F(StageCommands, CoarseGrainingScalesSpheresCountAndContactLengths) {
   auto workflow = [&](const std::string &name, double k) {
     const fs::path wf = dir_ / (name + ".yaml");
     std::ofstream(wf) << "version: 1\nname: " << name << "\nscene:\n  preset: quick\n  domain: {length: 20 mm}\n"
-                      << "  powder: {count: 400, heap_from: 6 mm, heap_to: 10 mm, settle_time: 0.01 s, coarse_grain: " << k
+                      << "  powder: {count: 400, heap_from: 6 mm, heap_to: 10 mm, settle_time: 0.01 s, coarse_grain: "
+                      << k
                       << "}\n  spreader: {use: roller, travel: 2 mm}\nstages:\n  - simulate:\n      render: false\n"
                          "      design: {type: list, cases: [{U: 100 mm/s}]}\n";
     const auto r = spreadmap({"run", wf.string(), "--out", (dir_ / name).string()});

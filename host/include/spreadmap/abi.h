@@ -1,7 +1,8 @@
-/* spreadmap plugin ABI, version 6 (2: PairList::upper; 3: its flat upper pairs, per-entry records; 4: Particles::team; 5: TeamSlot::cuts; 6: spreaders describe themselves, sm_spreader_ops_v2). Plain C: nothing C++ crosses a shared-library boundary.
- * Every plugin exports exactly one symbol, `spreadmap_plugin_v1`, returning a pointer to a static
- * descriptor whose first field is the ABI number; the host checks it before touching anything else.
- * Bump SPREADMAP_PLUGIN_ABI on any change of layout in this file or in a kind's ops table. */
+/* spreadmap plugin ABI, version 6 (2: PairList::upper; 3: its flat upper pairs, per-entry records; 4: Particles::team;
+ * 5: TeamSlot::cuts; 6: spreaders describe themselves, sm_spreader_ops_v2). Plain C: nothing C++ crosses a
+ * shared-library boundary. Every plugin exports exactly one symbol, `spreadmap_plugin_v1`, returning a pointer to a
+ * static descriptor whose first field is the ABI number; the host checks it before touching anything else. Bump
+ * SPREADMAP_PLUGIN_ABI on any change of layout in this file or in a kind's ops table. */
 #ifndef SPREADMAP_ABI_H
 #define SPREADMAP_ABI_H
 #include <stddef.h>
@@ -37,7 +38,7 @@ typedef enum sm_param_type {
 
 /* One entry of a plugin's parameter schema. Values reach the plugin validated and in SI. */
 typedef struct sm_param_v1 {
-  const char *name;     /* snake_case key as written in a workflow */
+  const char *name; /* snake_case key as written in a workflow */
   sm_param_type type;
   const char *unit;     /* SI unit of a number ("m", "m/s", "kg/m^3", "1/s", "-" dimensionless) */
   double min, max;      /* inclusive range for numbers and integers */
@@ -53,19 +54,19 @@ typedef struct sm_param_v1 {
 #define SM_BACKEND_CUDA 2u
 
 typedef struct sm_plugin_v1 {
-  uint32_t abi;                 /* SPREADMAP_PLUGIN_ABI of the SDK the plugin was built with */
-  const char *kind;             /* "contact" | "spreader" | "metrics" | "surrogate" */
-  const char *name;             /* equals the folder name and the .so stem */
-  const char *version;          /* the plugin's own version, "1.0.0" */
-  const char *summary;          /* one line */
+  uint32_t abi;        /* SPREADMAP_PLUGIN_ABI of the SDK the plugin was built with */
+  const char *kind;    /* "contact" | "spreader" | "metrics" | "surrogate" */
+  const char *name;    /* equals the folder name and the .so stem */
+  const char *version; /* the plugin's own version, "1.0.0" */
+  const char *summary; /* one line */
   const sm_param_v1 *params;
   uint32_t n_params;
-  uint32_t backends;            /* SM_BACKEND_* bits */
+  uint32_t backends; /* SM_BACKEND_* bits */
   /* Makes an instance from validated SI parameters as a JSON object text. Returns NULL and fills
    * err on failure (cross-parameter constraints). The instance is freed by destroy(). */
   void *(*create)(const char *params_json, sm_error *err);
   void (*destroy)(void *self);
-  const void *ops;              /* the kind's table: sm_contact_ops_v1, sm_spreader_ops_v2, ... */
+  const void *ops; /* the kind's table: sm_contact_ops_v1, sm_spreader_ops_v2, ... */
 } sm_plugin_v1;
 
 typedef const sm_plugin_v1 *(*sm_plugin_entry_v1)(void);

@@ -11,17 +11,17 @@ struct Team;  // team.hpp
 // Particle state. Read-only for plugins except the force/torque accumulators.
 template <class Real> struct Particles {
   std::uint32_t n;
-  const Real *x, *y, *z;     // position [m]
-  const Real *vx, *vy, *vz;  // velocity [m/s]
-  const Real *wx, *wy, *wz;  // angular velocity [rad/s]
-  const Real *r;             // radius [m]
-  const Real *m;             // mass [kg]
-  Real *fx, *fy, *fz;        // force accumulators [N]   (a plugin adds; never overwrites)
-  Real *tx, *ty, *tz;        // torque accumulators [N m]
-  Real box_lo[3], box_hi[3]; // domain
-  std::uint8_t periodic[3];  // 1: periodic along that axis (minimum image)
-  Real dt;                   // time step [s]
-  Real t;                    // time at which forces are evaluated [s]
+  const Real *x, *y, *z;       // position [m]
+  const Real *vx, *vy, *vz;    // velocity [m/s]
+  const Real *wx, *wy, *wz;    // angular velocity [rad/s]
+  const Real *r;               // radius [m]
+  const Real *m;               // mass [kg]
+  Real *fx, *fy, *fz;          // force accumulators [N]   (a plugin adds; never overwrites)
+  Real *tx, *ty, *tz;          // torque accumulators [N m]
+  Real box_lo[3], box_hi[3];   // domain
+  std::uint8_t periodic[3];    // 1: periodic along that axis (minimum image)
+  Real dt;                     // time step [s]
+  Real t;                      // time at which forces are evaluated [s]
   const Team *team = nullptr;  // the host's threads, for the loop to run on (null: an OpenMP region)
 };
 
@@ -30,9 +30,9 @@ template <class Real> struct Particles {
 // Engine-owned, zero at first.
 struct PairBalance {
   static constexpr int max_threads = 64;
-  std::int32_t threads;             // cut is for this many threads (otherwise equal shares)
-  double cut[max_threads + 1];      // thread t takes the entries from cut[t] to cut[t + 1] x all
-  double seconds[max_threads];      // each thread's last sweep
+  std::int32_t threads;         // cut is for this many threads (otherwise equal shares)
+  double cut[max_threads + 1];  // thread t takes the entries from cut[t] to cut[t + 1] x all
+  double seconds[max_threads];  // each thread's last sweep
 };
 
 // Full (both-direction) neighbour list in CSR form: the neighbours of particle i are

@@ -24,21 +24,21 @@ namespace spreadmap {
 
 // Kinematics of one contact, seen from particle i (the one receiving the force).
 template <class Real> struct ContactState {
-  Vec3<Real> normal;   // unit, from the other body towards i
-  Real overlap;        // > 0 [m]
-  Real v_n;            // (v_i - v_other) . normal at the contact point [m/s]; < 0 approaching
-  Vec3<Real> v_t;      // tangential relative velocity of i at the contact point [m/s]
-  Vec3<Real> w_rel;    // w_i - w_other [rad/s] (rolling resistance)
-  Real m_eq;           // m_i m_j / (m_i + m_j); the particle mass against a wall [kg]
-  Real r_eff;          // r_i r_j / (r_i + r_j); the particle radius against a wall [m]
-  Real dt;             // time step [s]
+  Vec3<Real> normal;  // unit, from the other body towards i
+  Real overlap;       // > 0 [m]
+  Real v_n;           // (v_i - v_other) . normal at the contact point [m/s]; < 0 approaching
+  Vec3<Real> v_t;     // tangential relative velocity of i at the contact point [m/s]
+  Vec3<Real> w_rel;   // w_i - w_other [rad/s] (rolling resistance)
+  Real m_eq;          // m_i m_j / (m_i + m_j); the particle mass against a wall [kg]
+  Real r_eff;         // r_i r_j / (r_i + r_j); the particle radius against a wall [m]
+  Real dt;            // time step [s]
 };
 
 // Force on particle i. Its torque is arm x tangent with arm = -r_i normal, plus `torque`.
 template <class Real> struct ContactForce {
-  Real normal = 0;                   // along state.normal, > 0 repulsive [N]
-  Vec3<Real> tangent = {0, 0, 0};    // [N]
-  Vec3<Real> torque = {0, 0, 0};     // extra torque on i, e.g. rolling resistance [N m]
+  Real normal = 0;                 // along state.normal, > 0 repulsive [N]
+  Vec3<Real> tangent = {0, 0, 0};  // [N]
+  Vec3<Real> torque = {0, 0, 0};   // extra torque on i, e.g. rolling resistance [N m]
 };
 
 // The contact ops table, shared by every contact plugin.
@@ -111,16 +111,20 @@ SM_HD void pair_forces_on(const Law &law, const Particles<Real> &p, const PairLi
     const ContactState<Real> c = pair_contact_state(p, i, j, d, dist2);
     accumulate(law(c, h), c.normal, p.r[i], force, torque);
   }
-  p.fx[i] += force.x; p.fy[i] += force.y; p.fz[i] += force.z;
-  p.tx[i] += torque.x; p.ty[i] += torque.y; p.tz[i] += torque.z;
+  p.fx[i] += force.x;
+  p.fy[i] += force.y;
+  p.fz[i] += force.z;
+  p.tx[i] += torque.x;
+  p.ty[i] += torque.y;
+  p.tz[i] += torque.z;
 }
 
 // Evaluates each touching pair once when the engine gives the list's mirror (pair_once.hpp).
-template <class Law, class Real> void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Real> &list);
+template <class Law, class Real>
+void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Real> &list);
 
 // Particle-particle loop: each particle sums its own forces over its neighbours in list order.
-template <class Law, class Real>
-void pair_loop(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
+template <class Law, class Real> void pair_loop(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
   if constexpr (Law::history == 0) {
     if (list.mirror && list.scratch && list.pair_i) return pair_loop_once(law, p, list);
   }
@@ -134,8 +138,8 @@ SM_HD ContactState<Real> wall_contact_state(const Particles<Real> &p, const Wall
   c.normal = {w.nx[i], w.ny[i], w.nz[i]};
   c.overlap = w.overlap[i];
   const Vec3<Real> wi{p.wx[i], p.wy[i], p.wz[i]};
-  const Vec3<Real> v = Vec3<Real>{p.vx[i] - w.vx[i], p.vy[i] - w.vy[i], p.vz[i] - w.vz[i]} -
-                       cross(wi * p.r[i], c.normal);
+  const Vec3<Real> v =
+      Vec3<Real>{p.vx[i] - w.vx[i], p.vy[i] - w.vy[i], p.vz[i] - w.vz[i]} - cross(wi * p.r[i], c.normal);
   c.v_n = dot(v, c.normal);
   c.v_t = v - c.normal * c.v_n;
   c.w_rel = wi;
@@ -157,8 +161,12 @@ SM_HD void wall_force_on(const Law &law, const Particles<Real> &p, const WallCon
   const ContactState<Real> c = wall_contact_state(p, w, i);
   Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
   accumulate(law(c, h), c.normal, p.r[i], force, torque);
-  p.fx[i] += force.x; p.fy[i] += force.y; p.fz[i] += force.z;
-  p.tx[i] += torque.x; p.ty[i] += torque.y; p.tz[i] += torque.z;
+  p.fx[i] += force.x;
+  p.fy[i] += force.y;
+  p.fz[i] += force.z;
+  p.tx[i] += torque.x;
+  p.ty[i] += torque.y;
+  p.tz[i] += torque.z;
 }
 
 namespace detail {
@@ -179,19 +187,28 @@ template <class Law, class Real> struct WallBatch {
       const ContactState<Real> c = wall_contact_state(p, w, i[q]);
       Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
       accumulate(law(c, static_cast<Real *>(nullptr)), c.normal, p.r[i[q]], force, torque);
-      f[0][q] = force.x; f[1][q] = force.y; f[2][q] = force.z; f[3][q] = torque.x; f[4][q] = torque.y; f[5][q] = torque.z;
+      f[0][q] = force.x;
+      f[1][q] = force.y;
+      f[2][q] = force.z;
+      f[3][q] = torque.x;
+      f[4][q] = torque.y;
+      f[5][q] = torque.z;
     }
     for (int q = 0; q < size; ++q) {
       const std::uint32_t k = i[q];
-      p.fx[k] += f[0][q]; p.fy[k] += f[1][q]; p.fz[k] += f[2][q];
-      p.tx[k] += f[3][q]; p.ty[k] += f[4][q]; p.tz[k] += f[5][q];
+      p.fx[k] += f[0][q];
+      p.fy[k] += f[1][q];
+      p.fz[k] += f[2][q];
+      p.tx[k] += f[3][q];
+      p.ty[k] += f[4][q];
+      p.tz[k] += f[5][q];
     }
   }
 };
 
 template <class Law, class Real>
 void wall_range(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t lo,
-                              std::uint32_t hi) {
+                std::uint32_t hi) {
   using Batch = WallBatch<Law, Real>;
   Batch batch;
   int queued = 0;
@@ -211,12 +228,12 @@ void wall_range(const Law &law, const Particles<Real> &p, const WallContacts<Rea
 }  // namespace detail
 
 // Particle-wall loop over the dense per-particle records of one wall.
-template <class Law, class Real>
-void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w) {
+template <class Law, class Real> void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w) {
   if constexpr (Law::history == 0) {
     run_team(p.team, [&](TeamSlot team) {
       const TeamRange r = team_share(w.n, team);
-      with_simd([&] { detail::wall_range(law, p, w, static_cast<std::uint32_t>(r.lo), static_cast<std::uint32_t>(r.hi)); });
+      with_simd(
+          [&] { detail::wall_range(law, p, w, static_cast<std::uint32_t>(r.lo), static_cast<std::uint32_t>(r.hi)); });
     });
   } else {
     parallel_for(p.team, w.n, [&](long long i) { wall_force_on(law, p, w, static_cast<std::uint32_t>(i)); });
@@ -231,7 +248,9 @@ template <class Law> struct ContactOps {
   static int torque(const void *s) { return law(s).makes_torque() ? 1 : 0; }
   static void p64(const void *s, const Particles<double> *p, const PairList<double> *l) { pair_loop(law(s), *p, *l); }
   static void p32(const void *s, const Particles<float> *p, const PairList<float> *l) { pair_loop(law(s), *p, *l); }
-  static void w64(const void *s, const Particles<double> *p, const WallContacts<double> *w) { wall_loop(law(s), *p, *w); }
+  static void w64(const void *s, const Particles<double> *p, const WallContacts<double> *w) {
+    wall_loop(law(s), *p, *w);
+  }
   static void w32(const void *s, const Particles<float> *p, const WallContacts<float> *w) { wall_loop(law(s), *p, *w); }
   static constexpr sm_contact_ops_v1 table = {Law::history, &frequency, &zeta, &torque, &p64, &p32, &w64, &w32};
 };
@@ -242,8 +261,8 @@ template <class Law> struct ContactOps {
 #include <spreadmap/pair_once.hpp>  // pair_loop_once, the CPU loop for laws without history
 
 // Registers a contact law. The static_asserts read as sentences when a law breaks the rules.
-#define SPREADMAP_CONTACT_PLUGIN(LAW, NAME, VERSION, SUMMARY)                                        \
-  static_assert(std::is_trivially_copyable_v<LAW>,                                                  \
-                "a contact law must be trivially copyable: no virtuals, no std containers");         \
-  static_assert(LAW::history >= 0, "a contact law must declare `static constexpr int history`");    \
+#define SPREADMAP_CONTACT_PLUGIN(LAW, NAME, VERSION, SUMMARY)                                    \
+  static_assert(std::is_trivially_copyable_v<LAW>,                                               \
+                "a contact law must be trivially copyable: no virtuals, no std containers");     \
+  static_assert(LAW::history >= 0, "a contact law must declare `static constexpr int history`"); \
   SPREADMAP_PLUGIN("contact", LAW, NAME, VERSION, SUMMARY, &::spreadmap::detail::ContactOps<LAW>::table)

@@ -76,27 +76,31 @@ template <class Real> SM_HD Real tangential_mass(Real m_eq) { return Real(2) / R
 
 // Schema entries shared by the Hooke laws (listed in each law's params[]).
 inline constexpr sm_param_v1 param_v_max =
-    number("v_max", "m/s", 1e-4, 1e3, 0.5, "V_max: largest expected impact speed; with overlap_max sets K_n = m_eq V_max^2 / Delta_max^2");
+    number("v_max", "m/s", 1e-4, 1e3, 0.5,
+           "V_max: largest expected impact speed; with overlap_max sets K_n = m_eq V_max^2 / Delta_max^2");
 inline constexpr sm_param_v1 param_overlap_max =
-    number("overlap_max", "m", 1e-12, 1e-2, 2.5e-6, "Delta_max: overlap reached at an undamped impact at V_max (1 % of 250 um by default)");
+    number("overlap_max", "m", 1e-12, 1e-2, 2.5e-6,
+           "Delta_max: overlap reached at an undamped impact at V_max (1 % of 250 um by default)");
 inline constexpr sm_param_v1 param_restitution =
     number("restitution", "-", 0, 1, 0.8, "epsilon: normal coefficient of restitution of an isolated collision");
 inline constexpr sm_param_v1 param_friction =
     number("friction", "-", 0, 10, 0.185, "mu: sliding (Coulomb) friction coefficient, |F_t| <= mu |F_n|");
-inline constexpr sm_param_v1 param_rolling_friction =
-    number("rolling_friction", "-", 0, 1, 0, "mu_r: rolling resistance, torque mu_r r_eff |F_n| against the relative rolling");
-inline constexpr sm_param_v1 param_clamp_normal =
-    boolean("clamp_normal", false, "clamp F_n >= 0 (no attraction at the end of a damped contact); raises the restitution unless clamp_correction");
-inline constexpr sm_param_v1 param_clamp_correction =
-    boolean("clamp_correction", false, "with clamp_normal: choose the damping so that the clamped contact still rebounds with restitution epsilon");
+inline constexpr sm_param_v1 param_rolling_friction = number(
+    "rolling_friction", "-", 0, 1, 0, "mu_r: rolling resistance, torque mu_r r_eff |F_n| against the relative rolling");
+inline constexpr sm_param_v1 param_clamp_normal = boolean(
+    "clamp_normal", false,
+    "clamp F_n >= 0 (no attraction at the end of a damped contact); raises the restitution unless clamp_correction");
+inline constexpr sm_param_v1 param_clamp_correction = boolean(
+    "clamp_correction", false,
+    "with clamp_normal: choose the damping so that the clamped contact still rebounds with restitution epsilon");
 
 // F_n = m_eq (omega0^2 delta - 2 zeta omega0 v_n): K_n = m_eq omega0^2 with omega0 = V_max/Delta_max,
 // beta_n = 2 zeta sqrt(K_n m_eq) = -2 ln eps sqrt(K_n m_eq / (pi^2 + ln^2 eps)). The dashpot opposes the
 // relative normal motion (v_n < 0 approaching makes it repulsive).
 struct LinearNormal {
-  double omega0;      // V_max / Delta_max [rad/s], the same for every contact whatever the sizes
-  double zeta;        // damping ratio actually used (corrected when clamp_correction)
-  bool clamp;         // F_n >= 0
+  double omega0;  // V_max / Delta_max [rad/s], the same for every contact whatever the sizes
+  double zeta;    // damping ratio actually used (corrected when clamp_correction)
+  bool clamp;     // F_n >= 0
 
   static LinearNormal bind(const Values &v) {
     const double eps = v["restitution"];
@@ -160,7 +164,8 @@ SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real
   const Real stick = tangential_mass(m_eq) * speed / (Real(2) * dt), viscous = m_eq * slip_rate * speed;
   const Real magnitude = min(cap, kind == Slider::stick ? stick : (kind == Slider::viscous ? viscous : cap));
   const Real scale = -magnitude / speed;
-  const bool acts = (speed > 0) & (cap > 0) & !((kind == Slider::coulomb) & ((speed <= slip_speed_min) | (speed <= round_off)));
+  const bool acts =
+      (speed > 0) & (cap > 0) & !((kind == Slider::coulomb) & ((speed <= slip_speed_min) | (speed <= round_off)));
   return {acts ? v_t.x * scale : Real(0), acts ? v_t.y * scale : Real(0), acts ? v_t.z * scale : Real(0)};
 }
 
@@ -171,8 +176,8 @@ SM_HD Vec3<Real> slider_force(Slider kind, Real cap, const Vec3<Real> &v_t, Real
 // v_t dt is added. F_t = -k_t s - damping v_t, capped at `cap`; when capped, s is reset to the
 // elongation consistent with the capped force (as LAMMPS gran/hooke/history does).
 template <class Real>
-SM_HD Vec3<Real> tangential_spring(const Vec3<Real> &normal, const Vec3<Real> &v_t, Real stiffness, Real damping, Real cap,
-                                   Real dt, Real *hist) {
+SM_HD Vec3<Real> tangential_spring(const Vec3<Real> &normal, const Vec3<Real> &v_t, Real stiffness, Real damping,
+                                   Real cap, Real dt, Real *hist) {
   Vec3<Real> s{hist[0], hist[1], hist[2]};
   const Real before = norm(s);
   s -= normal * dot(s, normal);
@@ -185,7 +190,9 @@ SM_HD Vec3<Real> tangential_spring(const Vec3<Real> &normal, const Vec3<Real> &v
     f *= cap / magnitude;
     s = -(f + v_t * damping) * (Real(1) / stiffness);
   }
-  hist[0] = s.x; hist[1] = s.y; hist[2] = s.z;
+  hist[0] = s.x;
+  hist[1] = s.y;
+  hist[2] = s.z;
   return f;
 }
 

@@ -26,9 +26,9 @@
 namespace spreadmap {
 
 template <class Real> struct WallHit {
-  Real overlap;          // > 0 when touching [m]
-  Vec3<Real> normal;     // unit, from the surface into the sphere
-  Vec3<Real> velocity;   // surface velocity at the contact point [m/s]
+  Real overlap;         // > 0 when touching [m]
+  Vec3<Real> normal;    // unit, from the surface into the sphere
+  Vec3<Real> velocity;  // surface velocity at the contact point [m/s]
 };
 
 extern "C" {
@@ -43,10 +43,10 @@ typedef struct sm_spreader_description_v2 {
   double x[SM_OUTLINE_MAX], z[SM_OUTLINE_MAX];  // [m]
   double y_centre, length;                      // [m]
   int turns;                                    // 1: it rotates about the reference point
-  double start, end;   // x of the reference point before (t <= 0) and after its travel [m]
-  double speed;        // U: translation speed while spreading [m/s] (the layer's V_s = mean height x U)
-  double duration;     // seconds from t = 0 to the end of its travel
-  double gap;          // height of its lowest point above the substrate z = 0 [m]
+  double start, end;                            // x of the reference point before (t <= 0) and after its travel [m]
+  double speed;     // U: translation speed while spreading [m/s] (the layer's V_s = mean height x U)
+  double duration;  // seconds from t = 0 to the end of its travel
+  double gap;       // height of its lowest point above the substrate z = 0 [m]
 } sm_spreader_description_v2;
 
 // Where a spreader is at time t: the reference point, the rotation of the body about +y through it
@@ -73,12 +73,17 @@ typedef struct sm_spreader_ops_v2 {
 // Particle i's dense wall-contact record for this geometry at time p.t. The body of both backends'
 // geometry loops.
 template <class Geometry, class Real>
-SM_HD void geometry_contact_of(const Geometry &g, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t i) {
+SM_HD void geometry_contact_of(const Geometry &g, const Particles<Real> &p, const WallContacts<Real> &w,
+                               std::uint32_t i) {
   WallHit<Real> hit{0, {0, 0, 1}, {0, 0, 0}};
   if (g(Vec3<Real>{p.x[i], p.y[i], p.z[i]}, p.r[i], p.t, hit) && hit.overlap > 0) {
     w.overlap[i] = hit.overlap;
-    w.nx[i] = hit.normal.x; w.ny[i] = hit.normal.y; w.nz[i] = hit.normal.z;
-    w.vx[i] = hit.velocity.x; w.vy[i] = hit.velocity.y; w.vz[i] = hit.velocity.z;
+    w.nx[i] = hit.normal.x;
+    w.ny[i] = hit.normal.y;
+    w.nz[i] = hit.normal.z;
+    w.vx[i] = hit.velocity.x;
+    w.vy[i] = hit.velocity.y;
+    w.vz[i] = hit.velocity.z;
   } else {
     w.overlap[i] = 0;
   }
@@ -112,6 +117,6 @@ template <class G> struct GeometryOps {
 }  // namespace detail
 }  // namespace spreadmap
 
-#define SPREADMAP_SPREADER_PLUGIN(GEOMETRY, NAME, VERSION, SUMMARY)                                  \
+#define SPREADMAP_SPREADER_PLUGIN(GEOMETRY, NAME, VERSION, SUMMARY)                                        \
   static_assert(std::is_trivially_copyable_v<GEOMETRY>, "a spreader geometry must be trivially copyable"); \
   SPREADMAP_PLUGIN("spreader", GEOMETRY, NAME, VERSION, SUMMARY, &::spreadmap::detail::GeometryOps<GEOMETRY>::table)

@@ -24,9 +24,24 @@ template <class T> struct Vec3 {
   SM_HD Vec3 operator-(const Vec3 &o) const { return {x - o.x, y - o.y, z - o.z}; }
   SM_HD Vec3 operator-() const { return {-x, -y, -z}; }
   SM_HD Vec3 operator*(T s) const { return {x * s, y * s, z * s}; }
-  SM_HD Vec3 &operator+=(const Vec3 &o) { x += o.x; y += o.y; z += o.z; return *this; }
-  SM_HD Vec3 &operator-=(const Vec3 &o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-  SM_HD Vec3 &operator*=(T s) { x *= s; y *= s; z *= s; return *this; }
+  SM_HD Vec3 &operator+=(const Vec3 &o) {
+    x += o.x;
+    y += o.y;
+    z += o.z;
+    return *this;
+  }
+  SM_HD Vec3 &operator-=(const Vec3 &o) {
+    x -= o.x;
+    y -= o.y;
+    z -= o.z;
+    return *this;
+  }
+  SM_HD Vec3 &operator*=(T s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
 };
 template <class T> SM_HD Vec3<T> operator*(T s, const Vec3<T> &v) { return v * s; }
 template <class T> SM_HD T dot(const Vec3<T> &a, const Vec3<T> &b) { return a.x * b.x + a.y * b.y + a.z * b.z; }

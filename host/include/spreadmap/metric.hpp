@@ -7,13 +7,13 @@
 
 extern "C" {
 typedef struct sm_layer_input_v1 {
-  uint64_t n;                        // spheres
-  const double *x, *y, *z, *r;       // centres and radii [m]
-  double region[4];                  // x0, x1, y0, y1 of the sampling rectangle [m]
-  double substrate_z;                // height of the substrate plane [m]
-  double periodic_y[2];              // y_lo, y_hi of a periodic strip; equal values = not periodic
-  double speed;                      // spreader speed U [m/s] for V_s; NaN when unknown
-  double gap;                        // spreader gap [m] for packing over the gap; NaN when unknown
+  uint64_t n;                   // spheres
+  const double *x, *y, *z, *r;  // centres and radii [m]
+  double region[4];             // x0, x1, y0, y1 of the sampling rectangle [m]
+  double substrate_z;           // height of the substrate plane [m]
+  double periodic_y[2];         // y_lo, y_hi of a periodic strip; equal values = not periodic
+  double speed;                 // spreader speed U [m/s] for V_s; NaN when unknown
+  double gap;                   // spreader gap [m] for packing over the gap; NaN when unknown
 } sm_layer_input_v1;
 
 typedef struct sm_metrics_ops_v1 {

@@ -44,8 +44,8 @@ inline void entry_balanced_range(const std::uint32_t *start, std::uint32_t n, in
   const bool tuned = balance && balance->threads == nt;
   auto cut = [&](int k) -> std::uint32_t {
     if (k >= nt) return n;
-    const std::uint64_t target = tuned ? std::uint64_t(double(entries) * balance->cut[k])
-                                       : entries * std::uint64_t(k) / std::uint64_t(nt);
+    const std::uint64_t target =
+        tuned ? std::uint64_t(double(entries) * balance->cut[k]) : entries * std::uint64_t(k) / std::uint64_t(nt);
     return static_cast<std::uint32_t>(std::lower_bound(start, start + n, target) - start);
   };
   lo = cut(t);
@@ -87,7 +87,7 @@ template <class Real> bool neighbour_below(const PairList<Real> &list, std::uint
 // One thread's share of the loop: its range, and where its running sums live.
 template <class Real> struct PairSweep {
   std::uint32_t lo, hi;
-  Real *sums;       // 6 per particle, indexed by particle
+  Real *sums;                     // 6 per particle, indexed by particle
   std::uint32_t waiting_end = 0;  // no particle from here on waits (found by find_waiting_end)
 
   // True when particle i (of this range or above) has a lower neighbour in an earlier thread's range
@@ -106,13 +106,19 @@ template <class Real> struct PairSweep {
   template <class EntryOf>
   void add(const PairList<Real> &list, std::uint32_t i, EntryOf k_of, const Vec3<Real> &f, const Vec3<Real> &t) {
     Real *s = i < hi && !waits(list, i) ? sums + std::size_t(i) * 6 : list.scratch + std::size_t(k_of()) * 6;
-    s[0] += f.x; s[1] += f.y; s[2] += f.z; s[3] += t.x; s[4] += t.y; s[5] += t.z;  // a record: 0 + c = c
+    s[0] += f.x;
+    s[1] += f.y;
+    s[2] += f.z;
+    s[3] += t.x;
+    s[4] += t.y;
+    s[5] += t.z;  // a record: 0 + c = c
   }
 };
 
 // The entry (i, j) of particle i's list, j > i (upper entries are listed by index).
 template <class Real> std::uint32_t upper_entry(const PairList<Real> &list, std::uint32_t i, std::uint32_t j) {
-  return static_cast<std::uint32_t>(std::lower_bound(list.nbr + list.upper[i], list.nbr + list.start[i + 1], j) - list.nbr);
+  return static_cast<std::uint32_t>(std::lower_bound(list.nbr + list.upper[i], list.nbr + list.start[i + 1], j) -
+                                    list.nbr);
 }
 
 // A queue of touching pairs of one thread, evaluated when full or at the end.
@@ -124,7 +130,8 @@ template <class Law, class Real> struct PairBatch {
   Real fi[6][capacity], fj[6][capacity];  // force and torque on i, then on j
 
   // Evaluates the first `size` queued pairs, in queue order, adding their contributions.
-  void flush(int size, const Law &shared_law, const Particles<Real> &p, const PairList<Real> &list, PairSweep<Real> &sweep) {
+  void flush(int size, const Law &shared_law, const Particles<Real> &p, const PairList<Real> &list,
+             PairSweep<Real> &sweep) {
     const Law law = shared_law;  // a copy the loop's stores cannot alias: its constants are invariant
     // ivdep, not omp simd: GCC 12 does not vectorise this loop with the lanes' private copies omp simd makes
 #pragma GCC ivdep
@@ -136,15 +143,26 @@ template <class Law, class Real> struct PairBatch {
       Vec3<Real> a{0, 0, 0}, ta{0, 0, 0}, b{0, 0, 0}, tb{0, 0, 0};
       accumulate(f, c.normal, p.r[i[q]], a, ta);
       accumulate(mirrored, -c.normal, p.r[j[q]], b, tb);
-      fi[0][q] = a.x; fi[1][q] = a.y; fi[2][q] = a.z; fi[3][q] = ta.x; fi[4][q] = ta.y; fi[5][q] = ta.z;
-      fj[0][q] = b.x; fj[1][q] = b.y; fj[2][q] = b.z; fj[3][q] = tb.x; fj[4][q] = tb.y; fj[5][q] = tb.z;
+      fi[0][q] = a.x;
+      fi[1][q] = a.y;
+      fi[2][q] = a.z;
+      fi[3][q] = ta.x;
+      fi[4][q] = ta.y;
+      fi[5][q] = ta.z;
+      fj[0][q] = b.x;
+      fj[1][q] = b.y;
+      fj[2][q] = b.z;
+      fj[3][q] = tb.x;
+      fj[4][q] = tb.y;
+      fj[5][q] = tb.z;
     }
     for (int q = 0; q < size; ++q) {
       const std::uint32_t pi = i[q], pj = j[q];
       // records only: the entry, looked up (rare: particles at the border of a thread's range)
       auto entry = [&] { return upper_entry(list, pi, pj); };
       sweep.add(list, pi, entry, {fi[0][q], fi[1][q], fi[2][q]}, {fi[3][q], fi[4][q], fi[5][q]});
-      sweep.add(list, pj, [&] { return list.mirror[entry()]; }, {fj[0][q], fj[1][q], fj[2][q]}, {fj[3][q], fj[4][q], fj[5][q]});
+      sweep.add(list, pj, [&] { return list.mirror[entry()]; }, {fj[0][q], fj[1][q], fj[2][q]},
+                {fj[3][q], fj[4][q], fj[5][q]});
     }
   }
 };
@@ -159,8 +177,12 @@ template <class Real> void add_records(const Particles<Real> &p, const PairList<
       r[c] = 0;
     }
   }
-  p.fx[i] += s[0]; p.fy[i] += s[1]; p.fz[i] += s[2];
-  p.tx[i] += s[3]; p.ty[i] += s[4]; p.tz[i] += s[5];
+  p.fx[i] += s[0];
+  p.fy[i] += s[1];
+  p.fz[i] += s[2];
+  p.tx[i] += s[3];
+  p.ty[i] += s[4];
+  p.tz[i] += s[5];
 }
 
 // The particles of one thread's range that may wait for records: [lo, end).
@@ -174,7 +196,8 @@ struct WaitingSpan {
 // the spans laid end to end. Which thread sums a particle changes no bit: its records are added in
 // list order either way.
 template <class Real>
-void add_waiting_records(const Particles<Real> &p, const PairList<Real> &list, const WaitingSpan *spans, TeamSlot team) {
+void add_waiting_records(const Particles<Real> &p, const PairList<Real> &list, const WaitingSpan *spans,
+                         TeamSlot team) {
   std::uint64_t total = 0;
   for (int u = 0; u < team.threads; ++u) total += spans[u].end - spans[u].lo;
   const TeamRange mine = team_share(total, team);
@@ -206,8 +229,7 @@ template <bool Periodic, class Real> Real wrap_axis(Real d, Real length) {
 // One thread's sweep of pair_loop_once over its range, compiled once per combination of periodic
 // axes so that the filter has no branch on them.
 template <bool PX, bool PY, bool PZ, class Law, class Real>
-void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> &list,
-                               PairSweep<Real> &shared_sweep) {
+void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> &list, PairSweep<Real> &shared_sweep) {
   PairSweep<Real> sweep = shared_sweep;  // a copy the stores into the queue cannot alias: kept in registers
   const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
   const Real *x = p.x, *y = p.y, *z = p.z, *r = p.r;
@@ -217,8 +239,12 @@ void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> 
     for (; done < end; ++done) {
       if (sweep.waits(list, done)) continue;
       Real *s = sweep.sums + std::size_t(done) * 6;
-      p.fx[done] += s[0]; p.fy[done] += s[1]; p.fz[done] += s[2];
-      p.tx[done] += s[3]; p.ty[done] += s[4]; p.tz[done] += s[5];
+      p.fx[done] += s[0];
+      p.fy[done] += s[1];
+      p.fz[done] += s[2];
+      p.tx[done] += s[3];
+      p.ty[done] += s[4];
+      p.tz[done] += s[5];
       for (int c = 0; c < 6; ++c) s[c] = 0;  // left as found: the next call starts from zero sums
     }
   };
@@ -234,8 +260,11 @@ void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> 
       const Real ddx = wrap_axis<PX>(x[i] - x[j], lx), ddy = wrap_axis<PY>(y[i] - y[j], ly),
                  ddz = wrap_axis<PZ>(z[i] - z[j], lz);
       const Real reach = r[i] + r[j];
-      batch.i[queued] = i; batch.j[queued] = j;
-      batch.dx[queued] = ddx; batch.dy[queued] = ddy; batch.dz[queued] = ddz;
+      batch.i[queued] = i;
+      batch.j[queued] = j;
+      batch.dx[queued] = ddx;
+      batch.dy[queued] = ddy;
+      batch.dz[queued] = ddz;
       queued += ddx * ddx + ddy * ddy + ddz * ddz < reach * reach ? 1 : 0;
     }
     if (queued > Batch::capacity - Batch::chunk) {
@@ -263,13 +292,20 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
     detail::entry_balanced_range(list.start, p.n, t, nt, list.balance, sweep.lo, sweep.hi);
     sweep.sums = list.scratch + std::size_t(list.start[p.n]) * 6;  // after the records; zero on entry and exit
     sweep.find_waiting_end(list);
-    auto sweep_with = [&]<bool PX, bool PY, bool PZ>() { with_simd([&] { detail::sweep_pairs<PX, PY, PZ>(law, p, list, sweep); }); };
+    auto sweep_with = [&]<bool PX, bool PY, bool PZ>() {
+      with_simd([&] { detail::sweep_pairs<PX, PY, PZ>(law, p, list, sweep); });
+    };
     if (px) {
-      if (py) pz ? sweep_with.template operator()<true, true, true>() : sweep_with.template operator()<true, true, false>();
-      else pz ? sweep_with.template operator()<true, false, true>() : sweep_with.template operator()<true, false, false>();
+      if (py)
+        pz ? sweep_with.template operator()<true, true, true>() : sweep_with.template operator()<true, true, false>();
+      else
+        pz ? sweep_with.template operator()<true, false, true>() : sweep_with.template operator()<true, false, false>();
     } else {
-      if (py) pz ? sweep_with.template operator()<false, true, true>() : sweep_with.template operator()<false, true, false>();
-      else pz ? sweep_with.template operator()<false, false, true>() : sweep_with.template operator()<false, false, false>();
+      if (py)
+        pz ? sweep_with.template operator()<false, true, true>() : sweep_with.template operator()<false, true, false>();
+      else
+        pz ? sweep_with.template operator()<false, false, true>()
+           : sweep_with.template operator()<false, false, false>();
     }
     const auto swept = std::chrono::steady_clock::now();
     const bool shared = nt <= PairBalance::max_threads;
@@ -284,7 +320,8 @@ void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Rea
     }
     // the thread's work, without its wait at the barrier
     if (list.balance && t < PairBalance::max_threads)
-      list.balance->seconds[t] = std::chrono::duration<double>(swept - began + (std::chrono::steady_clock::now() - summing)).count();
+      list.balance->seconds[t] =
+          std::chrono::duration<double>(swept - began + (std::chrono::steady_clock::now() - summing)).count();
     if (t == 0) threads = nt;
   });
   if (list.balance) detail::retune(*list.balance, threads);  // every thread is done with the cuts

@@ -19,12 +19,10 @@ struct ParamError : std::runtime_error {
 };
 
 // Schema builders: `static constexpr sm_param_v1 params[] = {sm::number(...), ...};`
-constexpr sm_param_v1 number(const char *name, const char *unit, double min, double max, double def,
-                             const char *doc) {
+constexpr sm_param_v1 number(const char *name, const char *unit, double min, double max, double def, const char *doc) {
   return {name, SM_NUMBER, unit, min, max, def, nullptr, 0, nullptr, doc};
 }
-constexpr sm_param_v1 required_number(const char *name, const char *unit, double min, double max,
-                                      const char *doc) {
+constexpr sm_param_v1 required_number(const char *name, const char *unit, double min, double max, const char *doc) {
   return {name, SM_NUMBER, unit, min, max, 0.0, nullptr, 1, nullptr, doc};
 }
 constexpr sm_param_v1 integer(const char *name, double min, double max, double def, const char *doc) {

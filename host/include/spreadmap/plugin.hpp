@@ -39,12 +39,18 @@ template <class Class> void destroy(void *self) { delete static_cast<Class *>(se
 #define SPREADMAP_BACKENDS SM_BACKEND_CPU
 #endif
 
-#define SPREADMAP_PLUGIN(KIND, CLASS, NAME, VERSION, SUMMARY, OPS)                                  \
-  extern "C" SM_EXPORT const sm_plugin_v1 *spreadmap_plugin_v1(void) {                              \
-    static const sm_plugin_v1 descriptor = {                                                        \
-        SPREADMAP_PLUGIN_ABI, KIND, NAME, VERSION, SUMMARY, CLASS::params,                          \
-        static_cast<uint32_t>(sizeof(CLASS::params) / sizeof(CLASS::params[0])),                    \
-        SPREADMAP_BACKENDS, &::spreadmap::detail::create<CLASS>, &::spreadmap::detail::destroy<CLASS>, \
-        OPS};                                                                                       \
-    return &descriptor;                                                                             \
+#define SPREADMAP_PLUGIN(KIND, CLASS, NAME, VERSION, SUMMARY, OPS)                                                   \
+  extern "C" SM_EXPORT const sm_plugin_v1 *spreadmap_plugin_v1(void) {                                               \
+    static const sm_plugin_v1 descriptor = {SPREADMAP_PLUGIN_ABI,                                                    \
+                                            KIND,                                                                    \
+                                            NAME,                                                                    \
+                                            VERSION,                                                                 \
+                                            SUMMARY,                                                                 \
+                                            CLASS::params,                                                           \
+                                            static_cast<uint32_t>(sizeof(CLASS::params) / sizeof(CLASS::params[0])), \
+                                            SPREADMAP_BACKENDS,                                                      \
+                                            &::spreadmap::detail::create<CLASS>,                                     \
+                                            &::spreadmap::detail::destroy<CLASS>,                                    \
+                                            OPS};                                                                    \
+    return &descriptor;                                                                                              \
   }

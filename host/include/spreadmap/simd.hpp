@@ -58,9 +58,15 @@ inline SimdLevel set_simd_level(SimdLevel level) {
 // Runs f() compiled for the level in use (f and everything it calls inlined into that copy).
 template <class F> void with_simd(F &&f) {
   switch (simd_level()) {
-    case SimdLevel::avx512: detail::run_avx512(f); return;
-    case SimdLevel::avx2: detail::run_avx2(f); return;
-    default: detail::run_base(f); return;
+    case SimdLevel::avx512:
+      detail::run_avx512(f);
+      return;
+    case SimdLevel::avx2:
+      detail::run_avx2(f);
+      return;
+    default:
+      detail::run_base(f);
+      return;
   }
 }
 #else

@@ -12,7 +12,7 @@ typedef struct sm_dataset_v1 {
 } sm_dataset_v1;
 
 typedef struct sm_surrogate_ops_v1 {
-  int has_std;  // 1 when predict() fills a standard deviation
+  int has_std;                                                        // 1 when predict() fills a standard deviation
   int (*fit)(void *self, const sm_dataset_v1 *train, sm_error *err);  // 0 on success
   // mean: rows x n_out; std: rows x n_out or NULL. 0 on success.
   int (*predict)(const void *self, uint32_t rows, const double *x, double *mean, double *std, sm_error *err);

@@ -26,9 +26,9 @@ struct TeamSlot {
 // the plugin boundary. The host's is engine/thread_team.hpp.
 struct Team {
   void *self;
-  int (*size)(void *self);                                          // threads a run would get now
+  int (*size)(void *self);                                                // threads a run would get now
   void (*run)(void *self, void (*body)(void *arg, TeamSlot), void *arg);  // returns when all are done
-  void (*barrier)(void *self);                                      // inside a run: waits for its threads
+  void (*barrier)(void *self);                                            // inside a run: waits for its threads
 };
 
 // The number of threads a run would get: the OpenMP setting (OMP_NUM_THREADS, omp_set_num_threads).
@@ -59,7 +59,8 @@ template <class Body> void run_team(const Team *team, Body &&body) {
   using B = std::remove_reference_t<Body>;
   if (team) {
     if (team->size(team->self) > 1) {
-      team->run(team->self, [](void *arg, TeamSlot slot) { (*static_cast<B *>(arg))(slot); }, &body);
+      team->run(
+          team->self, [](void *arg, TeamSlot slot) { (*static_cast<B *>(arg))(slot); }, &body);
       return;
     }
   }

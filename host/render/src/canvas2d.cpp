@@ -42,11 +42,21 @@ std::vector<Point2> marker_outline(Marker shape) {
     }
   };
   switch (shape) {
-    case Marker::circle: ring(24, 0, 0.5, 0); break;
-    case Marker::square: ring(4, pi / 4, 0.5 * std::sqrt(2.0) * 0.85, 0); break;
-    case Marker::diamond: ring(4, 0, 0.6, 0); break;
-    case Marker::triangle: ring(3, pi / 2, 0.6, 0); break;
-    case Marker::star: ring(10, pi / 2, 0.7, 0.3); break;
+    case Marker::circle:
+      ring(24, 0, 0.5, 0);
+      break;
+    case Marker::square:
+      ring(4, pi / 4, 0.5 * std::sqrt(2.0) * 0.85, 0);
+      break;
+    case Marker::diamond:
+      ring(4, 0, 0.6, 0);
+      break;
+    case Marker::triangle:
+      ring(3, pi / 2, 0.6, 0);
+      break;
+    case Marker::star:
+      ring(10, pi / 2, 0.7, 0.3);
+      break;
   }
   return p;
 }
@@ -93,7 +103,8 @@ std::string format_value(double v, double step) {
   int decimals = 0;
   if (step > 0) decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
   // 2.5-type steps need one more digit than their magnitude says.
-  if (step > 0 && std::abs(std::round(step / std::pow(10.0, -decimals)) * std::pow(10.0, -decimals) - step) > 1e-9 * step)
+  if (step > 0 &&
+      std::abs(std::round(step / std::pow(10.0, -decimals)) * std::pow(10.0, -decimals) - step) > 1e-9 * step)
     ++decimals;
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.*f", std::min(decimals, 8), v);
@@ -125,7 +136,8 @@ void Canvas::polyline(const std::vector<Point2>& pts, const Rgb& colour, double 
         const bool on = phase < dash;
         const double step = std::min(len - d, on ? dash - phase : dash + gap - phase);
         if (on) {
-          const vtkIdType i0 = points->InsertNextPoint(a[0] + (b[0] - a[0]) * d / len, a[1] + (b[1] - a[1]) * d / len, 0);
+          const vtkIdType i0 =
+              points->InsertNextPoint(a[0] + (b[0] - a[0]) * d / len, a[1] + (b[1] - a[1]) * d / len, 0);
           const vtkIdType i1 = points->InsertNextPoint(a[0] + (b[0] - a[0]) * (d + step) / len,
                                                        a[1] + (b[1] - a[1]) * (d + step) / len, 0);
           const vtkIdType seg[2] = {i0, i1};
@@ -281,23 +293,22 @@ void Canvas::legend(double x, double y, const std::vector<LegendEntry>& entries,
     const auto& e = entries[i];
     const double cy = y - pad - row * (static_cast<double>(i) + 0.5);
     const double sx0 = x + pad, sx1 = x + pad + sample;
-    if (e.fill_box[0] >= 0)
-      rectangle(sx0 + 4 * s_, cy - 0.35 * font_px, sx1 - 4 * s_, cy + 0.35 * font_px, e.fill_box);
+    if (e.fill_box[0] >= 0) rectangle(sx0 + 4 * s_, cy - 0.35 * font_px, sx1 - 4 * s_, cy + 0.35 * font_px, e.fill_box);
     if (e.line) polyline({{sx0, cy}, {sx1, cy}}, e.colour, 3 * s_, e.style);
     if (e.marker) marker(0.5 * (sx0 + sx1), cy, e.shape, 0.75 * font_px, e.colour, e.edge);
     text(e.label, sx1 + pad, cy, font_px, 0, 1);
   }
 }
 
-void draw_frame(Canvas& c, const PlotFrame& f, const std::string& x_title, const std::string& y_title,
-                double font_px, int x_ticks, int y_ticks, bool grid) {
+void draw_frame(Canvas& c, const PlotFrame& f, const std::string& x_title, const std::string& y_title, double font_px,
+                int x_ticks, int y_ticks, bool grid) {
   if (grid) {
     const Rgb g{0.88, 0.88, 0.88};
     for (double v : nice_ticks(f.x0, f.x1, x_ticks)) c.polyline({f.at(v, f.y0), f.at(v, f.y1)}, g, c.s());
     for (double v : nice_ticks(f.y0, f.y1, y_ticks)) c.polyline({f.at(f.x0, v), f.at(f.x1, v)}, g, c.s());
   }
-  c.polyline({{f.px0, f.py0}, {f.px0 + f.pw, f.py0}, {f.px0 + f.pw, f.py0 + f.ph}, {f.px0, f.py0 + f.ph}},
-             {0, 0, 0}, std::max(1.0, 1.5 * c.s()), LineStyle::solid, true);
+  c.polyline({{f.px0, f.py0}, {f.px0 + f.pw, f.py0}, {f.px0 + f.pw, f.py0 + f.ph}, {f.px0, f.py0 + f.ph}}, {0, 0, 0},
+             std::max(1.0, 1.5 * c.s()), LineStyle::solid, true);
   c.axis(Side::bottom, f.px0, f.px0 + f.pw, f.py0, f.x0, f.x1, x_title, x_ticks, font_px);
   c.axis(Side::left, f.py0, f.py0 + f.ph, f.px0, f.y0, f.y1, y_title, y_ticks, font_px);
 }

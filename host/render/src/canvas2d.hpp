@@ -21,12 +21,12 @@ enum class LineStyle { solid, dashed };
 struct LegendEntry {
   std::string label;
   Rgb colour{0, 0, 0};
-  bool line = false;            // a line sample ...
+  bool line = false;  // a line sample ...
   LineStyle style = LineStyle::solid;
-  bool marker = false;          // ... and/or a marker sample
+  bool marker = false;  // ... and/or a marker sample
   Marker shape = Marker::circle;
   Rgb edge{0, 0, 0};
-  Rgb fill_box{-1, -1, -1};     // a filled swatch (bands) when fill_box[0] >= 0
+  Rgb fill_box{-1, -1, -1};  // a filled swatch (bands) when fill_box[0] >= 0
 };
 
 // Round tick values (1, 2, 5 x 10^k steps) inside [lo, hi], about `count` of them.
@@ -39,8 +39,8 @@ class Canvas {
   Canvas(vtkRenderer* renderer, double scale) : r_(renderer), s_(scale) {}
   double s() const { return s_; }
 
-  void polyline(const std::vector<Point2>& pts, const Rgb& colour, double width_px,
-                LineStyle style = LineStyle::solid, bool closed = false, double opacity = 1.0);
+  void polyline(const std::vector<Point2>& pts, const Rgb& colour, double width_px, LineStyle style = LineStyle::solid,
+                bool closed = false, double opacity = 1.0);
   void rectangle(double x0, double y0, double x1, double y1, const Rgb& fill, double opacity = 1.0);
   void marker(double x, double y, Marker shape, double size_px, const Rgb& fill, const Rgb& edge);
   // halign: 0 left, 1 centre, 2 right; valign: 0 bottom, 1 centre, 2 top. A background box
@@ -76,7 +76,7 @@ struct PlotFrame {
 };
 
 // Draws the frame box and both axes of a plot.
-void draw_frame(Canvas& c, const PlotFrame& f, const std::string& x_title, const std::string& y_title,
-                double font_px, int x_ticks = 7, int y_ticks = 6, bool grid = false);
+void draw_frame(Canvas& c, const PlotFrame& f, const std::string& x_title, const std::string& y_title, double font_px,
+                int x_ticks = 7, int y_ticks = 6, bool grid = false);
 
 }  // namespace spreadmap::render::detail

@@ -117,8 +117,8 @@ void Figure::write(const fs::path& png) {
   int* dims = grab->GetOutput()->GetDimensions();
   if (dims[0] != opt_.width || dims[1] != opt_.height)
     throw RenderError("render: the X server gave a " + std::to_string(dims[0]) + "x" + std::to_string(dims[1]) +
-                      " image instead of " + std::to_string(opt_.width) + "x" + std::to_string(opt_.height) +
-                      " for " + png.string() + "; use a smaller figure or a larger screen");
+                      " image instead of " + std::to_string(opt_.width) + "x" + std::to_string(opt_.height) + " for " +
+                      png.string() + "; use a smaller figure or a larger screen");
   write_file(png, [&](const fs::path& tmp) {
     vtkNew<vtkPNGWriter> writer;
     writer->SetFileName(tmp.c_str());
@@ -152,7 +152,8 @@ void Figure::write(const fs::path& png) {
       prefix.replace_extension();
       exporter->SetFilePrefix(prefix.c_str());
       exporter->Write();
-      if (empty_file(tmp)) throw RenderError("render: gl2ps wrote nothing for " + copy.string() + "; leave vector_format empty");
+      if (empty_file(tmp))
+        throw RenderError("render: gl2ps wrote nothing for " + copy.string() + "; leave vector_format empty");
     });
 #endif
   }

@@ -31,7 +31,7 @@ class Figure {
   int height() const { return opt_.height; }
   // Pixel scale relative to a 1000-pixel-high figure: fonts and line widths grow with the image.
   double scale() const { return opt_.height / 1000.0; }
-  void add_title();  // Options::title, top centre (no-op when empty)
+  void add_title();                              // Options::title, top centre (no-op when empty)
   void write(const std::filesystem::path& png);  // render, PNG (atomic), optional vector copy
 
  private:
@@ -49,8 +49,8 @@ struct DisplayUnit {
   std::string label;  // "mm²/s"
 };
 DisplayUnit display_unit(const std::string& si_unit);
-std::string omega_symbol();                        // "ω" or "omega"
+std::string omega_symbol();                                                // "ω" or "omega"
 std::string axis_label(const std::string& name, const std::string& unit);  // "U [mm/s]"
-std::string pretty_name(const std::string& name);  // "V_s" -> "Vₛ"? kept plain: "V_s"
+std::string pretty_name(const std::string& name);                          // "V_s" -> "Vₛ"? kept plain: "V_s"
 
 }  // namespace spreadmap::render::detail

@@ -90,7 +90,8 @@ class PrivateXvfb {
     std::string number;
     const auto deadline_left = [start = std::chrono::steady_clock::now()] {
       return start_timeout_ms - static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
-                                                     std::chrono::steady_clock::now() - start).count());
+                                                     std::chrono::steady_clock::now() - start)
+                                                     .count());
     };
     for (;;) {
       pollfd p{fds[0], POLLIN, 0};
@@ -104,9 +105,9 @@ class PrivateXvfb {
     ::close(fds[0]);
     if (number.empty()) {
       stop();
-      throw sm::render::RenderError(
-          "render: the private Xvfb (" + *exe + ") did not report a display within " +
-          std::to_string(start_timeout_ms / 1000) + " s; check that it runs (" + *exe + " -displayfd 1) or set DISPLAY");
+      throw sm::render::RenderError("render: the private Xvfb (" + *exe + ") did not report a display within " +
+                                    std::to_string(start_timeout_ms / 1000) + " s; check that it runs (" + *exe +
+                                    " -displayfd 1) or set DISPLAY");
     }
     display_ = ":" + number;
     ::setenv("DISPLAY", display_.c_str(), 1);

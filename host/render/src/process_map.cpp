@@ -180,9 +180,11 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
   using namespace detail;
   const std::size_t nu = in.u.size(), nw = in.omega.size(), n = nu * nw;
   if (nu < 2 || nw < 2 || in.vs.size() != n || in.rq.size() != n)
-    throw RenderError("render: process_map needs at least 2 x 2 grid axes and u.size() * omega.size() values of vs "
-                      "and rq (" + std::to_string(nu) + " x " + std::to_string(nw) + ", vs " +
-                      std::to_string(in.vs.size()) + ", rq " + std::to_string(in.rq.size()) + ")");
+    throw RenderError(
+        "render: process_map needs at least 2 x 2 grid axes and u.size() * omega.size() values of vs "
+        "and rq (" +
+        std::to_string(nu) + " x " + std::to_string(nw) + ", vs " + std::to_string(in.vs.size()) + ", rq " +
+        std::to_string(in.rq.size()) + ")");
   if ((!in.rq_std.empty() && in.rq_std.size() != n) || (!in.vs_std.empty() && in.vs_std.size() != n))
     throw RenderError("render: process_map rq_std / vs_std must be empty or have u.size() * omega.size() values");
   auto lock = lock_rendering();
@@ -192,8 +194,14 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
   const double s = fig.scale(), font = 24 * s;
   Canvas c(fig.renderer(), s);
   const double left = 150 * s, right = 430 * s, bottom = 140 * s, top = (opt.title.empty() ? 40 : 90) * s;
-  PlotFrame f{left, bottom, fig.width() - left - right, fig.height() - bottom - top,
-              in.u.front() * 1e3, in.u.back() * 1e3, in.omega.front(), in.omega.back()};
+  PlotFrame f{left,
+              bottom,
+              fig.width() - left - right,
+              fig.height() - bottom - top,
+              in.u.front() * 1e3,
+              in.u.back() * 1e3,
+              in.omega.front(),
+              in.omega.back()};
   auto grid = pixel_grid(f, in);
 
   // R_q bands, coloured by the band each piece lies in (mean of its corner values: the field is
@@ -202,7 +210,8 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
   std::sort(rq_levels.begin(), rq_levels.end());
   std::vector<Rgb> band_colours;
   for (std::size_t i = 0; i + 1 < rq_levels.size(); ++i)
-    band_colours.push_back(colour_at(ColourMap::yellow_red, rq_levels.size() > 2 ? i / double(rq_levels.size() - 2) : 0.5));
+    band_colours.push_back(
+        colour_at(ColourMap::yellow_red, rq_levels.size() > 2 ? i / double(rq_levels.size() - 2) : 0.5));
   LabelBoxes placed;  // every contour label, so that none is drawn over another
   if (rq_levels.size() >= 2) {
     grid->GetPointData()->SetActiveScalars("rq");
@@ -247,8 +256,8 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
   const bool has_std = !in.rq_std.empty();
   if (has_std) {
     const auto std_levels = in.std_levels.empty() ? auto_levels(in.rq_std, 1e6, 3) : scaled(in.std_levels, 1e6);
-    labelled_lines(c, grid, "rq_std", std_levels, std_colour, 2.2 * s, LineStyle::dashed, unicode_text() ? "σ " : "std ", um, 0.5, 17 * s,
-                   placed);
+    labelled_lines(c, grid, "rq_std", std_levels, std_colour, 2.2 * s, LineStyle::dashed,
+                   unicode_text() ? "σ " : "std ", um, 0.5, 17 * s, placed);
   }
 
   if (in.frontier.size() >= 2) {
@@ -267,7 +276,8 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
     std::string text = label;
     if (in.rq_target > 0) {
       char t[64];
-      std::snprintf(t, sizeof t, "\nfor the target R_q %s %.1f %s", unicode_text() ? "≤" : "<=", in.rq_target * 1e6, um.c_str());
+      std::snprintf(t, sizeof t, "\nfor the target R_q %s %.1f %s", unicode_text() ? "≤" : "<=", in.rq_target * 1e6,
+                    um.c_str());
       text += t;
     }
     // on the side of the star where the label fits inside the plot (its longest line decides)
@@ -288,13 +298,20 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
   if (rq_levels.size() >= 2)
     c.band_bar(col_x, f.py0 + 0.42 * f.ph, 36 * s, 0.46 * f.ph, rq_levels, band_colours, "R_q [" + um + "]", 21 * s);
   std::vector<LegendEntry> legend;
-  legend.push_back({"R_q bands [" + um + "]", {0.45, 0.2, 0.1}, false, LineStyle::solid, false, Marker::circle,
-                    {0, 0, 0}, band_colours.empty() ? Rgb{-1, -1, -1} : band_colours[band_colours.size() / 2]});
+  legend.push_back({"R_q bands [" + um + "]",
+                    {0.45, 0.2, 0.1},
+                    false,
+                    LineStyle::solid,
+                    false,
+                    Marker::circle,
+                    {0, 0, 0},
+                    band_colours.empty() ? Rgb{-1, -1, -1} : band_colours[band_colours.size() / 2]});
   legend.push_back({"V_s [" + mm2s + "]", vs_colour, true});
-  if (has_std) legend.push_back({std::string(unicode_text() ? "σ" : "std") + "(R_q) model [" + um + "]", std_colour, true, LineStyle::dashed});
+  if (has_std)
+    legend.push_back(
+        {std::string(unicode_text() ? "σ" : "std") + "(R_q) model [" + um + "]", std_colour, true, LineStyle::dashed});
   if (in.frontier.size() >= 2) legend.push_back({"efficient frontier", frontier_colour, true});
-  if (in.optimum.found)
-    legend.push_back({"optimum", {0.2, 0.95, 0.3}, false, LineStyle::solid, true, Marker::star});
+  if (in.optimum.found) legend.push_back({"optimum", {0.2, 0.95, 0.3}, false, LineStyle::solid, true, Marker::star});
   c.legend(col_x - 20 * s, f.py0 + 0.38 * f.ph, legend, 19 * s);
   fig.add_title();
   fig.write(png);

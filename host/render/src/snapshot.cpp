@@ -138,8 +138,7 @@ double largest_speed(const SnapshotInput& in) {
   return top;
 }
 
-void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, const Options& opt,
-                     double speed_top) {
+void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, const Options& opt, double speed_top) {
   if (!(speed_top > 0)) speed_top = 1e-3;  // all at rest: a 0..1 mm/s bar
   Figure fig(opt);
   auto* ren = fig.renderer();

@@ -18,8 +18,7 @@ struct SnapshotScene {
 // speed_top: top of the colour range [m/s].
 SnapshotScene build_snapshot_scene(const SnapshotInput& in, double speed_top);
 double largest_speed(const SnapshotInput& in);
-void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, const Options& opt,
-                     double speed_top);
+void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, const Options& opt, double speed_top);
 
 // The spreader's body (its outline extruded along y, clipped to the domain's y extent; a stripe and
 // a spoke showing its angle when it turns), in millimetres.

@@ -96,7 +96,7 @@ std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderShape& s, c
   const auto [y0, y1] = y_extent(s, d);
   vtkNew<vtkTransform> place;  // body frame -> world: turned about +y, then moved to the reference
   place->Translate(s.reference[0] * mm, 0, s.reference[2] * mm);
-  place->RotateY(s.angle * deg);  // right-hand rotation about +y: +z turns towards +x
+  place->RotateY(s.angle * deg);        // right-hand rotation about +y: +z turns towards +x
   vtkNew<vtkTriangleFilter> triangles;  // caps of any (also concave) outline
   triangles->SetInputData(prism(s, y0, y1));
   vtkNew<vtkPolyDataNormals> normals;  // smooth across gently curved sides, sharp at the caps
@@ -130,7 +130,8 @@ std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderShape& s, c
 double spreader_top(const SpreaderShape& s) {
   double top = -1e300;
   const double c = std::cos(s.angle), sn = std::sin(s.angle);
-  for (std::size_t k = 0; k < s.outline_x.size(); ++k) top = std::max(top, s.reference[2] - s.outline_x[k] * sn + s.outline_z[k] * c);
+  for (std::size_t k = 0; k < s.outline_x.size(); ++k)
+    top = std::max(top, s.reference[2] - s.outline_x[k] * sn + s.outline_z[k] * c);
   return top;
 }
 

@@ -179,10 +179,16 @@ void surface(const SurfaceInput& in, const std::filesystem::path& png, const Opt
   double z_top[3];
   ren->GetDisplayPoint(z_top);
   c.text(axis_label(in.quantity.name, unit.label), z_top[0], z_top[1] + 34 * s, 26 * s, 1, 0);
-  c.colour_bar(fig.width() - 170 * s, 0.22 * fig.height(), 32 * s, 0.5 * fig.height(), ColourMap::viridis,
-               colour_lo, colour_hi, axis_label(in.quantity.name, unit.label), 22 * s);
+  c.colour_bar(fig.width() - 170 * s, 0.22 * fig.height(), 32 * s, 0.5 * fig.height(), ColourMap::viridis, colour_lo,
+               colour_hi, axis_label(in.quantity.name, unit.label), 22 * s);
   std::vector<LegendEntry> legend;
-  legend.push_back({"model prediction", {0, 0, 0}, false, LineStyle::solid, false, Marker::circle, {0, 0, 0},
+  legend.push_back({"model prediction",
+                    {0, 0, 0},
+                    false,
+                    LineStyle::solid,
+                    false,
+                    Marker::circle,
+                    {0, 0, 0},
                     colour_at(ColourMap::viridis, 0.6)});
   if (!train.empty())
     legend.push_back({"training case (" + std::to_string(train.size()) + ")", train_colour, false, LineStyle::solid,

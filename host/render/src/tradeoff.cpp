@@ -80,7 +80,8 @@ void tradeoff(const TradeoffInput& in, const std::filesystem::path& png, const O
   std::vector<double> costs, errors;
   for (const auto& p : in.points) {
     if (!(p.cost > 0) || !std::isfinite(p.cost))
-      throw RenderError("render: tradeoff fidelity '" + p.name + "' has no positive cost (" + std::to_string(p.cost) + ")");
+      throw RenderError("render: tradeoff fidelity '" + p.name + "' has no positive cost (" + std::to_string(p.cost) +
+                        ")");
     costs.push_back(p.cost);
     if (p.reference) continue;
     errors.push_back(std::abs(p.vs_error));
@@ -100,7 +101,8 @@ void tradeoff(const TradeoffInput& in, const std::filesystem::path& png, const O
   const double ms = 18 * s;
   auto clamp_y = [&](double v) { return std::clamp(std::log10(std::max(v, 1e-300)), f.y0, f.y1); };
   for (const auto& [level, colour] : {std::pair{in.vs_scatter, vs_colour}, std::pair{in.rq_scatter, rq_colour}})
-    if (level > 0) c.polyline({f.at(f.x0, clamp_y(level)), f.at(f.x1, clamp_y(level))}, colour, 2 * s, LineStyle::dashed);
+    if (level > 0)
+      c.polyline({f.at(f.x0, clamp_y(level)), f.at(f.x1, clamp_y(level))}, colour, 2 * s, LineStyle::dashed);
   for (const auto& p : in.points) {
     const double x = std::log10(p.cost);
     if (p.reference) {
@@ -111,7 +113,8 @@ void tradeoff(const TradeoffInput& in, const std::filesystem::path& png, const O
     const double yv = clamp_y(std::abs(p.vs_error)), yr_ = clamp_y(std::abs(p.rq_error));
     c.marker(f.px(x), f.py(yv), Marker::circle, ms, vs_colour, {0, 0, 0});
     c.marker(f.px(x), f.py(yr_), Marker::diamond, 1.1 * ms, rq_colour, {0, 0, 0});
-    c.text(p.name, f.px(x) + 14 * s, f.py(std::max(yv, yr_)) + 10 * s, 0.85 * font, 0, 0, {0.15, 0.15, 0.15}, 0, false, true);
+    c.text(p.name, f.px(x) + 14 * s, f.py(std::max(yv, yr_)) + 10 * s, 0.85 * font, 0, 0, {0.15, 0.15, 0.15}, 0, false,
+           true);
   }
   std::vector<LegendEntry> legend{
       {"V_s", vs_colour, false, LineStyle::solid, true, Marker::circle},

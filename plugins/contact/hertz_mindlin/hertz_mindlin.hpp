@@ -34,16 +34,17 @@ struct HertzMindlin {
       param_friction,
       param_rolling_friction,
       param_clamp_normal,
-      number("v_max", "m/s", 1e-4, 1e3, 0.5, "V_max: impact speed at which natural_frequency evaluates the Hertz stiffness (time step)"),
+      number("v_max", "m/s", 1e-4, 1e3, 0.5,
+             "V_max: impact speed at which natural_frequency evaluates the Hertz stiffness (time step)"),
   };
   static constexpr int history = 3;
 
-  double e_star;    // E* [Pa]
-  double g_star;    // G* [Pa]
-  double alpha;     // damping factor, calibrated to the restitution
+  double e_star;  // E* [Pa]
+  double g_star;  // G* [Pa]
+  double alpha;   // damping factor, calibrated to the restitution
   double mu;
   double mu_r;
-  double v_max;     // [m/s]
+  double v_max;  // [m/s]
   bool clamp;
 
   // Restitution of the dimensionless Hertz impact with damping factor alpha (RK4 with `h` time units
@@ -65,7 +66,7 @@ struct HertzMindlin {
       const double xn = x + h / 6 * (k1x + 2 * k2x + 2 * k3x + k4x);
       const double vn = v + h / 6 * (k1v + 2 * k2v + 2 * k3v + k4v);
       if (xn <= 0 && vn < 0) return -(v + (vn - v) * (x / (x - xn)));  // left the surface
-      if (clamp && vn < 0 && force(xn, vn) <= 0) return -vn;            // force gone: free flight
+      if (clamp && vn < 0 && force(xn, vn) <= 0) return -vn;           // force gone: free flight
       x = xn;
       v = vn;
     }
@@ -76,7 +77,8 @@ struct HertzMindlin {
     if (!clamp) return 2 * std::sqrt(5.0 / 6.0) * damping_ratio_from_restitution(eps);  // Di Renzo-Di Maio
     constexpr double alpha_max = 100;
     if (restitution_at(alpha_max, clamp) > eps)
-      throw ParamError("restitution " + number_text(eps) + " is below what hertz_mindlin reaches with clamp_normal "
+      throw ParamError("restitution " + number_text(eps) +
+                       " is below what hertz_mindlin reaches with clamp_normal "
                        "(use a larger restitution or clamp_normal: false)");
     double lo = 0, hi = alpha_max;
     for (int k = 0; k < 48; ++k) {
@@ -89,8 +91,13 @@ struct HertzMindlin {
   static HertzMindlin bind(const Values &v) {
     const double e = v["youngs_modulus"], nu = v["poisson_ratio"];
     const bool clamp = v.boolean("clamp_normal");
-    return {e / (2 * (1 - nu * nu)), e / (4 * (1 + nu) * (2 - nu)), alpha_for_restitution(v["restitution"], clamp),
-            v["friction"], v["rolling_friction"], v["v_max"], clamp};
+    return {e / (2 * (1 - nu * nu)),
+            e / (4 * (1 + nu) * (2 - nu)),
+            alpha_for_restitution(v["restitution"], clamp),
+            v["friction"],
+            v["rolling_friction"],
+            v["v_max"],
+            clamp};
   }
 
   // Overlap of an undamped impact at v_max [m].

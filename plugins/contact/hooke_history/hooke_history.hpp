@@ -36,8 +36,8 @@ struct HookeHistory {
 
   LinearNormal normal;
   double mu;
-  double kappa;           // k_t / K_n
-  double tangent_rate;    // beta_t / m_eq = 2 zeta omega0 sqrt(kappa 2/7) [1/s]
+  double kappa;         // k_t / K_n
+  double tangent_rate;  // beta_t / m_eq = 2 zeta omega0 sqrt(kappa 2/7) [1/s]
   double mu_r;
 
   static HookeHistory bind(const Values &v) {

@@ -35,8 +35,9 @@ struct HookeSlider {
       param_overlap_max,
       param_restitution,
       param_friction,
-      enumeration("slider", "stick|viscous|coulomb", "stick",
-                  "zero-slip handling: stick (half the slip removed per step), viscous (LIGGGHTS), coulomb (threshold)"),
+      enumeration(
+          "slider", "stick|viscous|coulomb", "stick",
+          "zero-slip handling: stick (half the slip removed per step), viscous (LIGGGHTS), coulomb (threshold)"),
       number("slip_damping", "1/s", 0, 1e12, 0,
              "gamma_t: viscous slider rate, F_t = -min(mu|F_n|, m_eq gamma_t |v_t|); 0 = beta_n/m_eq as LIGGGHTS"),
       number("slip_speed_min", "m/s", 0, 1, 1e-6, "coulomb slider: no tangential force while |v_t| <= this slip speed"),
@@ -47,7 +48,7 @@ struct HookeSlider {
   static constexpr int history = 0;
 
   LinearNormal normal;
-  double mu;              // sliding friction
+  double mu;  // sliding friction
   Slider slider;
   double slip_rate;       // gamma_t [1/s]
   double slip_speed_min;  // [m/s]
@@ -71,8 +72,8 @@ struct HookeSlider {
     f.normal = touching ? fn : Real(0);
     const Real fn_abs = f.normal < 0 ? -f.normal : f.normal;
     const Real round_off = slip_round_off(c.v_n < 0 ? -c.v_n : c.v_n);
-    f.tangent = slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min),
-                             round_off);
+    f.tangent =
+        slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min), round_off);
     f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
     return f;
   }

@@ -25,8 +25,8 @@ double slice_antiderivative(double x, double b, double c) {
   // atan2 of q: acos and asin near 1 would lose half the digits where the plane grazes the sphere.
   const double q = std::sqrt(std::max(0.0, (c - x) * (c + x)));
   const double slice_angle = b == 0 ? pi / 2 : std::atan2(q, b);  // b = 0: half disk at every x
-  return (x - x * x * x / 3) * slice_angle - b * (1 - b * b / 3) * std::atan2(x, q) -
-         2.0 / 3.0 * b * x * q + 2.0 / 3.0 * std::atan2(b * x, q);
+  return (x - x * x * x / 3) * slice_angle - b * (1 - b * b / 3) * std::atan2(x, q) - 2.0 / 3.0 * b * x * q +
+         2.0 / 3.0 * std::atan2(b * x, q);
 }
 
 }  // namespace
@@ -40,8 +40,7 @@ double sm::layer::unit_sphere_quadrant_volume(double a, double b) {
   return slice_antiderivative(c, b, c) - slice_antiderivative(a, b, c);
 }
 
-double sm::layer::sphere_volume_in_prism(double xc, double yc, double r, double x0, double x1, double y0,
-                                         double y1) {
+double sm::layer::sphere_volume_in_prism(double xc, double yc, double r, double x0, double x1, double y0, double y1) {
   if (r <= 0 || x1 <= x0 || y1 <= y0) return 0;
   if (xc + r <= x0 || xc - r >= x1 || yc + r <= y0 || yc - r >= y1) return 0;
   const double whole = 4 * pi / 3 * r * r * r;

@@ -140,8 +140,8 @@ LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double ce
       cell = d / 5;
     } else {
       cell = std::min(width, depth) / 100;
-      out.warnings.push_back("no spheres in the input: height-map cell set to 1/100 of the region (" +
-                             metres(cell) + ") instead of diameter / 5");
+      out.warnings.push_back("no spheres in the input: height-map cell set to 1/100 of the region (" + metres(cell) +
+                             ") instead of diameter / 5");
     }
   }
   out.grid = make_grid(in.region, cell);
@@ -166,7 +166,8 @@ LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double ce
   m.particles_in_region = centres_in_region(spheres, in.region, strip);
 
   if (solid == 0 && n_covered == 0)
-    out.warnings.push_back("no particle in the sampling region: height 0, coverage 0, packing fraction undefined (null)");
+    out.warnings.push_back(
+        "no particle in the sampling region: height 0, coverage 0, packing fraction undefined (null)");
   else if (!(map_volume > 0))
     out.warnings.push_back("the height map encloses no volume: packing fraction undefined (null)");
   return out;

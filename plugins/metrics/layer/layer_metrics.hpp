@@ -31,10 +31,10 @@ struct LayerMetrics {
 
 struct LayerResult {
   Grid grid;
-  std::vector<double> height;          // row-major, above the substrate [m]
-  std::vector<std::uint8_t> covered;   // 1 where a sphere covers the grid point
+  std::vector<double> height;         // row-major, above the substrate [m]
+  std::vector<std::uint8_t> covered;  // 1 where a sphere covers the grid point
   LayerMetrics metrics;
-  std::vector<std::string> warnings;   // sentences for the user; the host logs them
+  std::vector<std::string> warnings;  // sentences for the user; the host logs them
 };
 
 // The whole characterisation. `cell` is the plugin's `grid` parameter: 0 means mean diameter / 5.

@@ -44,18 +44,15 @@ struct Blade {
   static Blade bind(const Values &v) {
     const double thickness = v["thickness"], height = v["height"], rho = v["edge_radius"];
     if (rho > 0.5 * thickness || rho > 0.5 * height)
-      throw ParamError("edge_radius = " + text_of(rho) + " m exceeds half the thickness (" +
-                       text_of(0.5 * thickness) + " m) or half the height (" + text_of(0.5 * height) +
-                       " m): lower it or make the blade thicker");
+      throw ParamError("edge_radius = " + text_of(rho) + " m exceeds half the thickness (" + text_of(0.5 * thickness) +
+                       " m) or half the height (" + text_of(0.5 * height) + " m): lower it or make the blade thicker");
     return {Travel::bind(v), 0.5 * thickness, 0.5 * height, rho, v["length"], v["y_centre"], v["gap"]};
   }
 
-  template <class Real>
-  SM_HD bool operator()(const Vec3<Real> &p, Real r, Real t, WallHit<Real> &hit) const {
+  template <class Real> SM_HD bool operator()(const Vec3<Real> &p, Real r, Real t, WallHit<Real> &hit) const {
     const Real u = p.x - travel.x(t), w = p.z - static_cast<Real>(gap + half_height);
-    const ProfileDistance<Real> profile =
-        rounded_rectangle_distance(u, w, static_cast<Real>(half_thickness), static_cast<Real>(half_height),
-                                   static_cast<Real>(edge_radius));
+    const ProfileDistance<Real> profile = rounded_rectangle_distance(
+        u, w, static_cast<Real>(half_thickness), static_cast<Real>(half_height), static_cast<Real>(edge_radius));
     Vec3<Real> n{};
     const Real dist = extruded_distance(profile, p.y - static_cast<Real>(y_centre), static_cast<Real>(0.5 * length), n);
     const Real overlap = r - dist;

@@ -35,8 +35,8 @@ struct OscillatingRoller {
   };
 
   Cylinder body;
-  double omega;      // [rad/s]
-  double amplitude;  // A [rad]
+  double omega;              // [rad/s]
+  double amplitude;          // A [rad]
   double angular_frequency;  // 2 pi f [rad/s]
 
   static OscillatingRoller bind(const Values &v) {
@@ -51,8 +51,7 @@ struct OscillatingRoller {
     return static_cast<Real>(omega) + static_cast<Real>(amplitude) * k * std::sin(k * t);
   }
 
-  template <class Real>
-  SM_HD bool operator()(const Vec3<Real> &p, Real r, Real t, WallHit<Real> &hit) const {
+  template <class Real> SM_HD bool operator()(const Vec3<Real> &p, Real r, Real t, WallHit<Real> &hit) const {
     return body.touch(p, r, t, angular_velocity(t), hit);
   }
 

@@ -30,8 +30,7 @@ struct Roller {
 
   static Roller bind(const Values &v) { return {Cylinder::bind(v), v["omega"]}; }
 
-  template <class Real>
-  SM_HD bool operator()(const Vec3<Real> &p, Real r, Real t, WallHit<Real> &hit) const {
+  template <class Real> SM_HD bool operator()(const Vec3<Real> &p, Real r, Real t, WallHit<Real> &hit) const {
     return body.touch(p, r, t, body.travel.moving(t) ? static_cast<Real>(omega) : Real(0), hit);
   }
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "../common/lbfgs.hpp"
-#include "../common/random.hpp"
+#include "spreadmap/random.hpp"
 
 namespace sm = spreadmap;
 using Eigen::MatrixXd;
@@ -48,18 +48,24 @@ namespace {
 
 MatrixXd activate(Activation a, const MatrixXd &z) {
   switch (a) {
-    case Activation::sigmoid: return (1.0 + (-z.array()).exp()).inverse().matrix();
-    case Activation::tanh: return z.array().tanh().matrix();
-    case Activation::atan: return z.unaryExpr([](double v) { return std::atan(v); });
+    case Activation::sigmoid:
+      return (1.0 + (-z.array()).exp()).inverse().matrix();
+    case Activation::tanh:
+      return z.array().tanh().matrix();
+    case Activation::atan:
+      return z.unaryExpr([](double v) { return std::atan(v); });
   }
   return z;
 }
 // Derivative from the pre-activation z and the activation value f(z).
 MatrixXd derivative(Activation a, const MatrixXd &z, const MatrixXd &f) {
   switch (a) {
-    case Activation::sigmoid: return (f.array() * (1.0 - f.array())).matrix();
-    case Activation::tanh: return (1.0 - f.array().square()).matrix();
-    case Activation::atan: return (1.0 + z.array().square()).inverse().matrix();
+    case Activation::sigmoid:
+      return (f.array() * (1.0 - f.array())).matrix();
+    case Activation::tanh:
+      return (1.0 - f.array().square()).matrix();
+    case Activation::atan:
+      return (1.0 + z.array().square()).inverse().matrix();
   }
   return z;
 }
@@ -86,7 +92,8 @@ long BpnnModel::weight_count() const {
 }
 
 void BpnnModel::initialise(int n_in, int n_out) {
-  if (config_.hidden_layers < 1 || config_.units < 1) throw std::invalid_argument("bpnn: need at least one hidden unit");
+  if (config_.hidden_layers < 1 || config_.units < 1)
+    throw std::invalid_argument("bpnn: need at least one hidden unit");
   Random rng(config_.seed);
   weights_.clear(), biases_.clear();
   int in = n_in;
@@ -280,8 +287,11 @@ nlohmann::json BpnnModel::to_json() const {
                       {"weights", std::vector<double>(w.data(), w.data() + w.size())},
                       {"biases", std::vector<double>(biases_[l].data(), biases_[l].data() + biases_[l].size())}});
   }
-  return {{"activation", name_of(config_.activation)}, {"layers", layers},
-          {"x_scale", x_scale_.to_json()}, {"y_scale", y_scale_.to_json()}, {"fit", info_.to_json()}};
+  return {{"activation", name_of(config_.activation)},
+          {"layers", layers},
+          {"x_scale", x_scale_.to_json()},
+          {"y_scale", y_scale_.to_json()},
+          {"fit", info_.to_json()}};
 }
 
 BpnnModel BpnnModel::from_json(const nlohmann::json &j, BpnnConfig config) {
@@ -297,7 +307,8 @@ BpnnModel BpnnModel::from_json(const nlohmann::json &j, BpnnConfig config) {
   }
   if (m.weights_.empty()) throw std::invalid_argument("bpnn state: no layers");
   for (std::size_t l = 1; l < m.weights_.size(); ++l)
-    if (m.weights_[l].cols() != m.weights_[l - 1].rows()) throw std::invalid_argument("bpnn state: layer sizes do not chain");
+    if (m.weights_[l].cols() != m.weights_[l - 1].rows())
+      throw std::invalid_argument("bpnn state: layer sizes do not chain");
   m.config_.hidden_layers = int(m.weights_.size()) - 1;
   m.config_.units = int(m.weights_.front().rows());
   m.x_scale_ = Standardiser::from_json(j.at("x_scale"));

@@ -44,7 +44,7 @@ struct BpnnConfig {
   double validation_share = 0;  // share of the training rows held out for early stopping
   long patience = 200;          // epochs without validation improvement before stopping
   std::uint64_t seed = 1;
-  double tolerance = 1e-10;     // relative change of the loss that ends lbfgs early
+  double tolerance = 1e-10;  // relative change of the loss that ends lbfgs early
 };
 
 struct BpnnFitInfo {
@@ -73,8 +73,8 @@ class BpnnModel {
   void initialise(int n_in, int n_out);
   // Loss on already standardised data (rows = samples) at parameters p, with its back-propagated
   // gradient when grad is not null. Public for the gradient test.
-  double loss(const Eigen::VectorXd &p, const Eigen::MatrixXd &xs, const Eigen::MatrixXd &ys,
-              Eigen::VectorXd *grad, double *mse_out = nullptr) const;
+  double loss(const Eigen::VectorXd &p, const Eigen::MatrixXd &xs, const Eigen::MatrixXd &ys, Eigen::VectorXd *grad,
+              double *mse_out = nullptr) const;
 
   nlohmann::json to_json() const;
   static BpnnModel from_json(const nlohmann::json &j, BpnnConfig config);

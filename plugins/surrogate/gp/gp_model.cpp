@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "../common/lbfgs.hpp"
-#include "../common/random.hpp"
+#include "spreadmap/random.hpp"
 
 namespace sm = spreadmap;
 using Eigen::MatrixXd;
@@ -56,7 +56,8 @@ MatrixXd GpModel::kernel(const VectorXd &theta, const MatrixXd &a, const MatrixX
   const MatrixXd as = a.array().rowwise() * inv_l.array(), bs = b.array().rowwise() * inv_l.array();
   MatrixXd k(a.rows(), b.rows());
   for (Eigen::Index j = 0; j < b.rows(); ++j)
-    for (Eigen::Index i = 0; i < a.rows(); ++i) k(i, j) = kernel_value(config_.kernel, s2, (as.row(i) - bs.row(j)).squaredNorm()).k;
+    for (Eigen::Index i = 0; i < a.rows(); ++i)
+      k(i, j) = kernel_value(config_.kernel, s2, (as.row(i) - bs.row(j)).squaredNorm()).k;
   return k;
 }
 
@@ -85,10 +86,10 @@ double GpModel::negative_log_likelihood(const VectorXd &theta, const MatrixXd &x
       const Eigen::RowVectorXd diff2 = (xl.row(i) - xl.row(j)).array().square().matrix();
       const KernelValue kv = kernel_value(config_.kernel, s2, diff2.sum());
       const double half_w = 0.5 * w(i, j);
-      (*grad)[0] += half_w * kv.k;                                     // dk/dlog s^2 = k
-      grad->segment(1, d) += half_w * kv.q * diff2.transpose();        // dk/dlog l_d = q r_d^2
+      (*grad)[0] += half_w * kv.k;                               // dk/dlog s^2 = k
+      grad->segment(1, d) += half_w * kv.q * diff2.transpose();  // dk/dlog l_d = q r_d^2
     }
-  (*grad)[d + 1] = 0.5 * noise * w.trace();                             // dK/dlog n^2 = n^2 I
+  (*grad)[d + 1] = 0.5 * noise * w.trace();  // dK/dlog n^2 = n^2 I
   return value;
 }
 
@@ -108,7 +109,8 @@ void GpModel::prepare(Output &out, const VectorXd &ys) const {
 
 void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
   if (x.rows() != y.rows()) throw std::invalid_argument("gp: inputs and outputs differ in row count");
-  if (x.rows() < 2 || x.cols() < 1 || y.cols() < 1) throw std::invalid_argument("gp: need >= 2 rows, >= 1 input and output");
+  if (x.rows() < 2 || x.cols() < 1 || y.cols() < 1)
+    throw std::invalid_argument("gp: need >= 2 rows, >= 1 input and output");
   if (!x.allFinite() || !y.allFinite()) throw std::invalid_argument("gp: training data contain NaN or infinity");
   if (config_.restarts < 1) throw std::invalid_argument("gp: restarts must be >= 1");
   x_train_ = x, y_train_ = y;
@@ -164,7 +166,8 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
 MatrixXd GpModel::predict(const MatrixXd &x, MatrixXd *std) const {
   if (!fitted()) throw std::logic_error("gp: predict() before fit() or load()");
   if (x.cols() != xs_.cols())
-    throw std::invalid_argument("gp: expected " + std::to_string(xs_.cols()) + " inputs, got " + std::to_string(x.cols()));
+    throw std::invalid_argument("gp: expected " + std::to_string(xs_.cols()) + " inputs, got " +
+                                std::to_string(x.cols()));
   const MatrixXd xq = x_scale_.forward(x);
   MatrixXd mean(x.rows(), Eigen::Index(outputs_.size()));
   if (std) std->resize(x.rows(), Eigen::Index(outputs_.size()));
@@ -201,7 +204,8 @@ MatrixXd matrix_from_json(const nlohmann::json &j, Eigen::Index cols, const char
   MatrixXd m(Eigen::Index(j.size()), cols);
   for (Eigen::Index r = 0; r < m.rows(); ++r) {
     const auto row = j.at(std::size_t(r)).get<std::vector<double>>();
-    if (Eigen::Index(row.size()) != cols) throw std::invalid_argument(std::string("gp state: a row of ") + what + " has the wrong length");
+    if (Eigen::Index(row.size()) != cols)
+      throw std::invalid_argument(std::string("gp state: a row of ") + what + " has the wrong length");
     for (Eigen::Index c = 0; c < cols; ++c) m(r, c) = row[std::size_t(c)];
   }
   return m;
@@ -212,7 +216,7 @@ nlohmann::json GpModel::to_json() const {
   nlohmann::json thetas = nlohmann::json::array();
   for (const auto &o : outputs_) thetas.push_back(std::vector<double>(o.theta.data(), o.theta.data() + o.theta.size()));
   return {{"kernel", name_of(config_.kernel)}, {"x_scale", x_scale_.to_json()}, {"y_scale", y_scale_.to_json()},
-          {"x", matrix_json(x_train_)}, {"y", matrix_json(y_train_)}, {"theta", thetas}};
+          {"x", matrix_json(x_train_)},        {"y", matrix_json(y_train_)},    {"theta", thetas}};
 }
 
 GpModel GpModel::from_json(const nlohmann::json &j, GpConfig config) {
@@ -223,7 +227,8 @@ GpModel GpModel::from_json(const nlohmann::json &j, GpConfig config) {
   const Eigen::Index d = m.x_scale_.mean.size(), n_out = m.y_scale_.mean.size();
   m.x_train_ = matrix_from_json(j.at("x"), d, "x");
   m.y_train_ = matrix_from_json(j.at("y"), n_out, "y");
-  if (m.x_train_.rows() != m.y_train_.rows() || m.x_train_.rows() < 1) throw std::invalid_argument("gp state: x and y differ in rows");
+  if (m.x_train_.rows() != m.y_train_.rows() || m.x_train_.rows() < 1)
+    throw std::invalid_argument("gp state: x and y differ in rows");
   m.xs_ = m.x_scale_.forward(m.x_train_);
   const MatrixXd ys = m.y_scale_.forward(m.y_train_);
   const auto &thetas = j.at("theta");
@@ -254,7 +259,9 @@ nlohmann::json GpModel::info() const {
                     {"log_marginal_likelihood", o.lml},
                     {"iterations", o.iterations}});
   }
-  return {{"kernel", name_of(config_.kernel)}, {"restarts", config_.restarts}, {"outputs", outs},
+  return {{"kernel", name_of(config_.kernel)},
+          {"restarts", config_.restarts},
+          {"outputs", outs},
           {"loo_mean", fitted() ? matrix_json(loo_mean()) : nlohmann::json::array()}};
 }
 

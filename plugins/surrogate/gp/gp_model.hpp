@@ -27,11 +27,11 @@ const char *name_of(Kernel k);
 
 struct GpConfig {
   Kernel kernel = Kernel::squared_exponential;
-  int restarts = 5;              // optimiser starts (>= 1)
+  int restarts = 5;  // optimiser starts (>= 1)
   std::uint64_t seed = 1;
-  double noise_min = 1e-12;      // lower bound of n^2, as a share of each output's variance
-  double noise_max = 1.0;        // upper bound of n^2, same scale
-  long max_iterations = 300;     // L-BFGS iterations per start
+  double noise_min = 1e-12;   // lower bound of n^2, as a share of each output's variance
+  double noise_max = 1.0;     // upper bound of n^2, same scale
+  long max_iterations = 300;  // L-BFGS iterations per start
 };
 
 class GpModel {
@@ -51,18 +51,18 @@ class GpModel {
   double negative_log_likelihood(const Eigen::VectorXd &theta, const Eigen::MatrixXd &xs, const Eigen::VectorXd &ys,
                                  Eigen::VectorXd *grad) const;
 
-  nlohmann::json to_json() const;      // state: kernel, scaling, training data, theta per output
+  nlohmann::json to_json() const;  // state: kernel, scaling, training data, theta per output
   static GpModel from_json(const nlohmann::json &j, GpConfig config);
-  nlohmann::json info() const;         // hyperparameters in input/output units, lml, LOO predictions
+  nlohmann::json info() const;  // hyperparameters in input/output units, lml, LOO predictions
   const GpConfig &config() const { return config_; }
 
  private:
   struct Output {
-    Eigen::VectorXd theta;     // log(s^2), log(l_1..d), log(n^2)
-    double lml = 0;            // log marginal likelihood (standardised data)
-    Eigen::MatrixXd chol;      // lower Cholesky factor of K + n^2 I
-    Eigen::VectorXd alpha;     // (K + n^2 I)^-1 y
-    Eigen::VectorXd loo;       // leave-one-out means, standardised
+    Eigen::VectorXd theta;  // log(s^2), log(l_1..d), log(n^2)
+    double lml = 0;         // log marginal likelihood (standardised data)
+    Eigen::MatrixXd chol;   // lower Cholesky factor of K + n^2 I
+    Eigen::VectorXd alpha;  // (K + n^2 I)^-1 y
+    Eigen::VectorXd loo;    // leave-one-out means, standardised
     long iterations = 0;
   };
   Eigen::MatrixXd kernel(const Eigen::VectorXd &theta, const Eigen::MatrixXd &a, const Eigen::MatrixXd &b) const;

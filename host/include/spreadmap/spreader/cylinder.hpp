@@ -34,14 +34,13 @@ struct Cylinder {
   }
 
   // The contact of a sphere (centre p, radius r) at time t with the cylinder turning at w [rad/s].
-  template <class Real>
-  SM_HD bool touch(const Vec3<Real> &p, Real r, Real t, Real w, WallHit<Real> &hit) const {
+  template <class Real> SM_HD bool touch(const Vec3<Real> &p, Real r, Real t, Real w, WallHit<Real> &hit) const {
     const Real cx = travel.x(t), cz = static_cast<Real>(axis_z), R = static_cast<Real>(radius);
     const Real dx = p.x - cx, dz = p.z - cz;
     const Real d = std::sqrt(dx * dx + dz * dz);
     // A centre on the axis has no defined direction: push it down, towards the substrate side.
-    const ProfileDistance<Real> disc = d > Real(0) ? ProfileDistance<Real>{d - R, dx / d, dz / d}
-                                                   : ProfileDistance<Real>{-R, Real(0), Real(-1)};
+    const ProfileDistance<Real> disc =
+        d > Real(0) ? ProfileDistance<Real>{d - R, dx / d, dz / d} : ProfileDistance<Real>{-R, Real(0), Real(-1)};
     Vec3<Real> n{};
     const Real dist = extruded_distance(disc, p.y - static_cast<Real>(y_centre), static_cast<Real>(0.5 * length), n);
     const Real overlap = r - dist;

@@ -17,7 +17,8 @@ inline void add_vertex(sm_spreader_description_v2 *out, double x, double z) {
 
 // Appends `segments` + 1 points of the arc of radius r about (cx, cz) from angle a0 to a1 (radians,
 // counted from +x towards +z). r = 0 appends the centre once.
-inline void add_arc(sm_spreader_description_v2 *out, double cx, double cz, double r, double a0, double a1, int segments) {
+inline void add_arc(sm_spreader_description_v2 *out, double cx, double cz, double r, double a0, double a1,
+                    int segments) {
   if (!(r > 0)) return add_vertex(out, cx, cz);
   for (int k = 0; k <= segments; ++k) {
     const double a = a0 + (a1 - a0) * k / segments;
@@ -28,7 +29,8 @@ inline void add_arc(sm_spreader_description_v2 *out, double cx, double cz, doubl
 // A circle of radius r about the origin, as `segments` vertices.
 inline void add_circle(sm_spreader_description_v2 *out, double r, int segments) {
   constexpr double two_pi = 6.283185307179586;
-  for (int k = 0; k < segments; ++k) add_vertex(out, r * std::cos(two_pi * k / segments), r * std::sin(two_pi * k / segments));
+  for (int k = 0; k < segments; ++k)
+    add_vertex(out, r * std::cos(two_pi * k / segments), r * std::sin(two_pi * k / segments));
 }
 
 }  // namespace spreadmap::spreader

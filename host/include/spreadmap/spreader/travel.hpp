@@ -34,18 +34,12 @@ struct Travel {
   double end;       // start + distance, or `end` as given [m]
 
   // Time spent moving by time t, in [0, duration].
-  template <class Real> SM_HD Real elapsed(Real t) const {
-    return clamp(t, Real(0), static_cast<Real>(duration));
-  }
-  template <class Real> SM_HD bool moving(Real t) const {
-    return t >= Real(0) && t < static_cast<Real>(duration);
-  }
+  template <class Real> SM_HD Real elapsed(Real t) const { return clamp(t, Real(0), static_cast<Real>(duration)); }
+  template <class Real> SM_HD bool moving(Real t) const { return t >= Real(0) && t < static_cast<Real>(duration); }
   template <class Real> SM_HD Real x(Real t) const {
     return static_cast<Real>(start) + static_cast<Real>(speed) * elapsed(t);
   }
-  template <class Real> SM_HD Real velocity(Real t) const {
-    return moving(t) ? static_cast<Real>(speed) : Real(0);
-  }
+  template <class Real> SM_HD Real velocity(Real t) const { return moving(t) ? static_cast<Real>(speed) : Real(0); }
 
   // Host only: the travel part of the spreader's description.
   void describe(sm_spreader_description_v2 *out) const {

@@ -26,8 +26,8 @@ typedef struct sm_cuda_launch_v1 {
 } sm_cuda_launch_v1;
 
 typedef struct sm_contact_cuda_ops_v1 {
-  uint32_t abi;       // SPREADMAP_CUDA_ABI
-  uint32_t history;   // values per contact; equals the CPU table's
+  uint32_t abi;      // SPREADMAP_CUDA_ABI
+  uint32_t history;  // values per contact; equals the CPU table's
   int (*pairs_f64)(const void *self, const spreadmap::Particles<double> *p, const spreadmap::PairList<double> *list,
                    const sm_cuda_launch_v1 *at, sm_error *err);
   int (*pairs_f32)(const void *self, const spreadmap::Particles<float> *p, const spreadmap::PairList<float> *list,
@@ -39,9 +39,9 @@ typedef struct sm_contact_cuda_ops_v1 {
 } sm_contact_cuda_ops_v1;
 
 typedef struct sm_geometry_cuda_ops_v1 {
-  uint32_t abi;       // SPREADMAP_CUDA_ABI
-  int (*contacts_f64)(const void *self, const spreadmap::Particles<double> *p, const spreadmap::WallContacts<double> *out,
-                      const sm_cuda_launch_v1 *at, sm_error *err);
+  uint32_t abi;  // SPREADMAP_CUDA_ABI
+  int (*contacts_f64)(const void *self, const spreadmap::Particles<double> *p,
+                      const spreadmap::WallContacts<double> *out, const sm_cuda_launch_v1 *at, sm_error *err);
   int (*contacts_f32)(const void *self, const spreadmap::Particles<float> *p, const spreadmap::WallContacts<float> *out,
                       const sm_cuda_launch_v1 *at, sm_error *err);
 } sm_geometry_cuda_ops_v1;

@@ -19,12 +19,14 @@ namespace spreadmap::cuda {
 // heavier laws (Hertz-Mindlin with history) to keep several blocks per multiprocessor.
 inline constexpr unsigned threads_per_block = 128;
 
-template <class Law, class Real> __global__ void pair_kernel(const Law law, const Particles<Real> p, const PairList<Real> list) {
+template <class Law, class Real>
+__global__ void pair_kernel(const Law law, const Particles<Real> p, const PairList<Real> list) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < p.n) pair_forces_on(law, p, list, i);
 }
 
-template <class Law, class Real> __global__ void wall_kernel(const Law law, const Particles<Real> p, const WallContacts<Real> w) {
+template <class Law, class Real>
+__global__ void wall_kernel(const Law law, const Particles<Real> p, const WallContacts<Real> w) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < w.n) wall_force_on(law, p, w, i);
 }
@@ -38,7 +40,8 @@ __global__ void geometry_kernel(const Geometry g, const Particles<Real> p, const
 inline int fail(sm_error *err, const char *doing, cudaError_t e) {
   if (err) {
     err->code = static_cast<int>(e);
-    std::snprintf(err->text, sizeof err->text, "%s: CUDA says '%s' (%s)", doing, cudaGetErrorString(e), cudaGetErrorName(e));
+    std::snprintf(err->text, sizeof err->text, "%s: CUDA says '%s' (%s)", doing, cudaGetErrorString(e),
+                  cudaGetErrorName(e));
   }
   return 1;
 }
@@ -58,7 +61,8 @@ int launch(Kernel kernel, std::uint32_t n, const sm_cuda_launch_v1 *at, sm_error
 template <class Law> struct ContactCudaOps {
   static const Law &law(const void *s) { return *static_cast<const Law *>(s); }
   template <class Real>
-  static int pairs(const void *s, const Particles<Real> *p, const PairList<Real> *l, const sm_cuda_launch_v1 *at, sm_error *err) {
+  static int pairs(const void *s, const Particles<Real> *p, const PairList<Real> *l, const sm_cuda_launch_v1 *at,
+                   sm_error *err) {
     return launch(pair_kernel<Law, Real>, p->n, at, err, law(s), *p, *l);
   }
   template <class Real>
@@ -66,8 +70,8 @@ template <class Law> struct ContactCudaOps {
                    sm_error *err) {
     return launch(wall_kernel<Law, Real>, w->n, at, err, law(s), *p, *w);
   }
-  static constexpr sm_contact_cuda_ops_v1 table = {SPREADMAP_CUDA_ABI, Law::history, &pairs<double>, &pairs<float>,
-                                                   &walls<double>, &walls<float>};
+  static constexpr sm_contact_cuda_ops_v1 table = {SPREADMAP_CUDA_ABI, Law::history,   &pairs<double>,
+                                                   &pairs<float>,      &walls<double>, &walls<float>};
 };
 
 template <class Geometry> struct GeometryCudaOps {
@@ -81,11 +85,11 @@ template <class Geometry> struct GeometryCudaOps {
 
 }  // namespace spreadmap::cuda
 
-#define SPREADMAP_CONTACT_CUDA(LAW)                                                          \
-  extern "C" SM_EXPORT const sm_contact_cuda_ops_v1 *sm_contact_cuda_v1(void) {               \
-    return &::spreadmap::cuda::ContactCudaOps<LAW>::table;                                    \
+#define SPREADMAP_CONTACT_CUDA(LAW)                                             \
+  extern "C" SM_EXPORT const sm_contact_cuda_ops_v1 *sm_contact_cuda_v1(void) { \
+    return &::spreadmap::cuda::ContactCudaOps<LAW>::table;                      \
   }
-#define SPREADMAP_SPREADER_CUDA(GEOMETRY)                                                    \
-  extern "C" SM_EXPORT const sm_geometry_cuda_ops_v1 *sm_spreader_cuda_v1(void) {             \
-    return &::spreadmap::cuda::GeometryCudaOps<GEOMETRY>::table;                              \
+#define SPREADMAP_SPREADER_CUDA(GEOMETRY)                                         \
+  extern "C" SM_EXPORT const sm_geometry_cuda_ops_v1 *sm_spreader_cuda_v1(void) { \
+    return &::spreadmap::cuda::GeometryCudaOps<GEOMETRY>::table;                  \
   }

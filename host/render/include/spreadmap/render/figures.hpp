@@ -56,7 +56,7 @@ struct SnapshotInput {
   std::vector<double> speed;       // [m/s], coloured (drawn in mm/s)
   Box domain;                      // the substrate is drawn at z = domain.lo[2]
   SpreaderShape spreader;
-  double speed_max = 0;            // colour-bar top [m/s]; 0 = largest speed in the input
+  double speed_max = 0;  // colour-bar top [m/s]; 0 = largest speed in the input
 };
 
 // Heights h[iy * nx + ix] [m] of cell (ix, iy) whose centre is origin + (ix + 1/2, iy + 1/2) * cell.
@@ -117,7 +117,7 @@ struct MapInput {
   std::vector<double> vs, rq;
   std::vector<double> vs_std, rq_std;
   std::vector<double> rq_levels, vs_levels, std_levels;  // SI
-  std::vector<MapPoint> frontier;                         // efficient operating line
+  std::vector<MapPoint> frontier;                        // efficient operating line
   Optimum optimum;
   double rq_target = 0;  // [m], shown in the optimum label when > 0
 };
@@ -147,8 +147,7 @@ void tradeoff(const TradeoffInput& in, const std::filesystem::path& png, const O
 // frames (largest speed over the sequence unless speed_max is set). Returns the files written.
 std::vector<std::filesystem::path> animation_frames(const std::vector<SnapshotInput>& frames,
                                                     const std::filesystem::path& directory,
-                                                    const std::string& stem = "frame",
-                                                    const Options& opt = {});
+                                                    const std::string& stem = "frame", const Options& opt = {});
 
 // True when this build can write vector copies (vtkGL2PSExporter present).
 bool vector_output_available();

@@ -1,0 +1,55 @@
+// The figures each stage leaves in the run directory (snapshot, height map, parity, surfaces, process
+// map). Figures are a view of results, never a result: when this build has no VTK, or rendering
+// fails, a warning says so once and the stage goes on.
+#pragma once
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "analysis/grid.hpp"
+#include "analysis/optimum.hpp"
+#include "analysis/report.hpp"
+#include "engine/particle_set.hpp"
+#include "workflow/characterise/layer_eval.hpp"
+
+namespace spreadmap::figures {
+
+namespace fs = std::filesystem;
+
+bool available();
+
+// "c004: U = 70 mm/s, omega = 0 rad/s" from a case's design inputs (SI), for figure titles.
+std::string case_title(const std::string &id, const nlohmann::json &inputs);
+
+// The particles with the spreader drawn as the case recorded it: `record` is case.json (its
+// `spreader` describes the body, its `spreader_end` is the pose where it stopped), `pose` a series
+// entry's pose instead (null: spreader_end). A record without them (written by an older version)
+// draws no spreader. `scene` is the case's resolved scene. Sizes and vector copies follow the
+// stage's style (figure_style.hpp).
+void snapshot(const engine::ParticleSet &p, const Scene &scene, const nlohmann::json &record, const fs::path &png,
+              const std::string &title, const nlohmann::json &pose = nullptr);
+// Numbered frames dir/frame_0000.png ... of a snapshot series, one colour scale for all; returns how many.
+std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::vector<nlohmann::json> &poses,
+                   const Scene &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title);
+void heightmap(const LayerResult &layer, const fs::path &png, const std::string &title);
+// Predicted against simulated V_s and R_q, training and test rows.
+void parity(const analysis::Report &report, const std::vector<std::string> &outputs, const fs::path &png);
+// A response surface over (U, omega) for each output, with the simulated cases as points.
+// u_col / omega_col: the grid's input columns; points: rows of (U, omega, outputs...) from training.
+void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &units, const analysis::Table &data,
+              const fs::path &dir);
+// The process map: V_s and R_q contours over (U, omega), the frontier and the optimum.
+void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
+                 const std::vector<analysis::Optimum> &optima, const fs::path &png);
+
+// The speed-accuracy trade: |error| of each fidelity against the reference over its wall time.
+struct TradeoffRow {
+  std::string name;
+  double wall_seconds = 0, vs_error_percent = 0, rq_error_percent = 0;
+  bool reference = false;
+};
+void tradeoff(const std::vector<TradeoffRow> &rows, double vs_scatter_percent, double rq_scatter_percent,
+              const fs::path &png);
+
+}  // namespace spreadmap::figures

@@ -1,0 +1,104 @@
+#include "workflow/map/mapping.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "core/error.hpp"
+#include "core/files.hpp"
+#include "core/suggest.hpp"
+#include "workflow/figures/stage_figures.hpp"
+
+namespace spreadmap {
+
+std::unique_ptr<analysis::PluginModel> load_model(PluginRegistry &registry, const analysis::ModelFile &file) {
+  const LoadedPlugin &plugin = registry.get("surrogate", file.plugin_name());
+  auto model = analysis::PluginModel::create(plugin.descriptor, file.params.dump());
+  model->load(file.state, Eigen::Index(file.outputs.size()));
+  return model;
+}
+
+std::optional<std::size_t> output_index(const analysis::ModelFile &file, const std::string &name) {
+  for (std::size_t i = 0; i < file.outputs.size(); ++i)
+    if (iequals(file.outputs[i].name, name)) return i;
+  return std::nullopt;
+}
+
+MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &file, const MapRequest &rq) {
+  const auto model = load_model(registry, file);
+  auto points = rq.points.empty() ? analysis::default_grid_points(file.inputs.size()) : rq.points;
+  std::vector<analysis::Axis> axes;
+  for (std::size_t i = 0; i < file.inputs.size(); ++i) {
+    const auto &v = file.inputs[i];
+    axes.push_back({v.name, v.min, v.max, v.min == v.max ? 1 : points.at(i)});
+  }
+  std::vector<std::string> outputs;
+  for (const auto &o : file.outputs) outputs.push_back(o.name);
+  MapResult m{
+      analysis::evaluate_grid(*model, axes, outputs), output_index(file, "vs"), output_index(file, "rq"), {}, {}};
+  if (m.vs && m.rq) {
+    m.optima = analysis::find_optima(m.grid, *m.vs, *m.rq, rq.rq_max);
+    m.frontier = analysis::frontier(m.grid, *m.vs, *m.rq);
+  } else if (!rq.rq_max.empty()) {
+    throw InputError("error: map: an optimum needs outputs named vs and rq; this model has " + [&] {
+      std::vector<std::string> n;
+      for (const auto &o : file.outputs) n.push_back(o.name);
+      return join(n);
+    }());
+  }
+  return m;
+}
+
+void write_process_map(const MapResult &m, const analysis::ModelFile &file, const std::filesystem::path &dir,
+                       const analysis::Table *training, bool figures_on) {
+  std::filesystem::create_directories(dir);
+  m.grid.to_table().write_csv((dir / "map.csv").string());
+  std::vector<std::string> names;
+  for (const auto &v : file.inputs) names.push_back(v.name);
+  nlohmann::json optima = nlohmann::json::array();
+  for (const auto &o : m.optima) optima.push_back(o.to_json(names));
+  nlohmann::json units = nlohmann::json::object();
+  for (const auto &v : file.inputs) units[v.name] = v.unit;
+  for (const auto &v : file.outputs) units[v.name] = v.unit;
+  write_atomic(dir / "optimum.json",
+               nlohmann::json({{"model", file.plugin}, {"units", units}, {"optima", optima}}).dump(2) + "\n");
+  if (m.vs && m.rq) m.frontier.write_csv((dir / "frontier.csv").string());
+  if (!figures_on) return;
+  std::vector<std::string> out_units;
+  for (const auto &v : file.outputs) out_units.push_back(v.unit);
+  figures::surfaces(m.grid, out_units, training ? *training : analysis::Table(), dir);
+  if (m.vs && m.rq) figures::process_map(m.grid, *m.vs, *m.rq, m.frontier, m.optima, dir / "map.png");
+}
+
+std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t inputs) {
+  std::vector<std::size_t> out;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    const auto x = text.find_first_of("xX", pos);
+    const std::string part = text.substr(pos, x == std::string::npos ? std::string::npos : x - pos);
+    try {
+      std::size_t used = 0;
+      const long v = std::stol(part, &used);
+      if (used != part.size() || v < 2 || v > 100000) throw std::invalid_argument("range");
+      out.push_back(std::size_t(v));
+    } catch (const std::exception &) {
+      throw InputError("error: --grid " + text + ": write points per input as NXxNY with each at least 2, e.g. 101x81");
+    }
+    if (x == std::string::npos) break;
+    pos = x + 1;
+  }
+  if (out.size() != inputs)
+    throw InputError(
+        fmt::format("error: --grid {}: the model has {} inputs, the grid gives {}", text, inputs, out.size()));
+  return out;
+}
+
+std::string display(double v, const std::string &unit) {
+  if (unit == "m^2/s") return fmt::format("{:.4g} mm^2/s", v * 1e6);
+  if (unit == "m/s") return fmt::format("{:.4g} mm/s", v * 1e3);
+  if (unit == "m") return fmt::format("{:.4g} um", v * 1e6);
+  if (unit == "rad/s") return fmt::format("{:.4g} rad/s", v);
+  if (unit.empty() || unit == "-" || unit == "1") return fmt::format("{:.4g}", v);
+  return fmt::format("{:.4g} {}", v, unit);
+}
+
+}  // namespace spreadmap

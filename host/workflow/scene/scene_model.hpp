@@ -1,0 +1,90 @@
+// The resolved scene as a typed value: every number in SI, every key present and checked. The
+// workflow's scene is parsed and validated once (scene_section.hpp) into a Scene; every later stage reads
+// this value. A plugin's parameters stay the validated SI JSON object the plugin ABI takes.
+//
+// cases/cNNN/scene.json is to_json(scene).dump(2): the JSON form has the same keys, types and
+// order (alphabetical) as the resolved JSON scene always had, so case and heap hashes are stable.
+#pragma once
+#include <cstdint>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace spreadmap {
+
+struct Domain {
+  double length = 0, width = 0, height = 0;  // m, from the origin
+  bool periodic_x = false, periodic_y = true;
+};
+
+struct Powder {
+  double diameter = 0, density = 0;  // m, kg/m^3
+  std::int64_t count = 0;            // spheres (ignored when volume > 0)
+  double volume = 0;                 // m^3 of solid
+  std::string distribution;          // mono | lognormal | table
+  double d50 = 0, sigma = 0;         // lognormal
+  nlohmann::json table;              // table: [{diameter, fraction}, ...], else null
+  std::int64_t seed = 0;
+  double heap_from = 0, heap_to = 0, heap_top = 0;  // m
+  double settle_time = 0, settle_speed = 0;         // s, m/s
+  double coarse_grain = 1;
+};
+
+struct TimeSettings {
+  double step = 0, safety = 0, skin = 0, relax = 0, checkpoint_interval = 0;
+  std::int64_t snapshots = 0;
+  double overlap_limit = 0;
+  bool sleep = false;
+  double sleep_speed = 0, sleep_behind = 0;
+};
+
+// A plugin the scene names and its parameters (validated, SI), as the plugin's create() takes them.
+struct PluginChoice {
+  std::string use;
+  nlohmann::json params = nlohmann::json::object();
+};
+
+// The spreader geometry and the contact law between the particles and the spreader.
+struct SpreaderChoice : PluginChoice {
+  nlohmann::json law = nlohmann::json::object();
+};
+
+// The contact law between the particles and the substrate.
+struct Substrate {
+  nlohmann::json law = nlohmann::json::object();
+};
+
+enum class Precision { float64, float32 };
+
+struct Scene {
+  std::string preset = "quick";  // quick | standard | paper
+  Precision precision = Precision::float64;
+  std::string backend = "auto";  // auto | cpu | cuda
+  std::int64_t threads = 0;      // 0 = all cores
+  bool deterministic = true;
+  double gravity = 9.81;  // m/s^2 along -z
+  Domain domain;
+  Powder powder;
+  TimeSettings time;
+  PluginChoice contact;  // particle-particle law
+  Substrate substrate;
+  SpreaderChoice spreader;
+};
+
+// "double" or "float", as scene.json writes it.
+const char *precision_name(Precision precision);
+
+nlohmann::json to_json(const Scene &scene);
+// Throws InputError naming `source` (a file or "the resolved scene") and the key that is missing,
+// of the wrong type or unknown.
+Scene scene_from_json(const nlohmann::json &json, const std::string &source);
+// A case's scene.json (cases/cNNN/scene.json), checked as above.
+Scene read_scene_file(const std::filesystem::path &file);
+// Writes it (atomically), as read_scene_file reads it.
+void write_scene_file(const std::filesystem::path &file, const Scene &scene);
+
+// Sets one host key (section "" for the top level: precision, gravity ...; else domain, powder or
+// time) from an SI JSON value of the key's type; throws InputError for a key the scene lacks.
+void set_host_key(Scene &scene, const std::string &section, const std::string &key, const nlohmann::json &value);
+
+}  // namespace spreadmap

@@ -1,0 +1,14 @@
+// design: adaptive in the simulate stage. The design's grid is the set of allowed settings; a few
+// space-filling cases run first, then a Gaussian process is fitted to their V_s and R_q after each
+// case and the setting where it is least sure runs next, until the cross-validated error reaches
+// `target_nrmse` or `budget` cases have run (analysis/adaptive.hpp). Case ids are the grid's row
+// numbers, so an interrupted design resumes from its finished cases. Writes adaptive.json.
+#pragma once
+#include "workflow/simulate/design.hpp"
+#include "workflow/stage.hpp"
+
+namespace spreadmap {
+
+void run_adaptive_design(StageContext &ctx, const Design &design, bool render);
+
+}  // namespace spreadmap

@@ -1,0 +1,51 @@
+#include "workflow/simulate/case_once.hpp"
+
+#include "core/error.hpp"
+#include "core/files.hpp"
+#include "core/schema.hpp"
+#include "core/stop.hpp"
+#include "workflow/simulate/case_setup.hpp"
+#include "workflow/simulate/coarse_grain.hpp"
+#include "workflow/executors/local_executor.hpp"
+
+namespace spreadmap {
+
+nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool render, bool &ran,
+                           const std::string &stage) {
+  const std::string hash = case_hash(req.scene);
+  ran = ctx.options.force || !case_finished(req.dir, hash);
+  ctx.run.update_manifest([&](nlohmann::json &m) {
+    if (!m.contains("cases")) m["cases"] = nlohmann::json::array();
+    auto &cases = m["cases"];
+    for (auto it = cases.begin(); it != cases.end(); ++it)
+      if (it->value("id", "") == req.id) {
+        if (!ran) return;  // finished: its record stays
+        cases.erase(it);
+        break;
+      }
+    cases.push_back({{"id", req.id}, {"inputs", req.inputs}, {"hash", hash}});  // the executor adds the outcome
+    if (!ran) cases.back()["status"] = "done";
+  });
+  if (ran) {
+    write_scene_file(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry));  // as the engine runs it
+    CaseBatch batch{{{0, req, render}}, 1, stage};
+    LocalExecutor(1, ctx.options.case_threads).run_cases(batch, ctx);
+  }
+  if (stop_requested()) throw Interrupted("interrupted: finished cases are kept; run the same command again to resume");
+  return nlohmann::json::parse(read_text(req.dir / "case.json"));
+}
+
+LayerResult measure_case_layer(PluginRegistry &registry, const Scene &scene, const fs::path &dir) {
+  const LoadedPlugin &layer = registry.get("metrics", "layer");
+  Diagnostics diag;
+  LayerRequest lr;
+  lr.params = validate_params(SchemaView::of(*layer.descriptor), YAML::Node(), "<defaults>", "metrics/layer", diag);
+  diag.throw_if_any();
+  const auto spreader = describe_spreader(scene, registry, dir / "scene.json");
+  lr.region = default_region(scene, spreader);
+  if (scene.domain.periodic_y) lr.periodic_y = std::make_pair(0.0, scene.domain.width);
+  take_spreader(lr, spreader);
+  return characterise_layer(registry, lr, read_particle_file(dir / "state.vtp"));
+}
+
+}  // namespace spreadmap

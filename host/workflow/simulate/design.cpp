@@ -1,0 +1,261 @@
+#include "workflow/simulate/design.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "core/schema.hpp"
+#include "core/suggest.hpp"
+#include "core/units.hpp"
+
+namespace spreadmap {
+
+std::vector<double> parse_value_list(const YAML::Node &node, const sm_param_v1 &param, const std::string &file,
+                                     const std::string &key_path, Diagnostics &diag) {
+  std::vector<double> out;
+  auto one = [&](const YAML::Node &n, const std::string &text) {
+    YAML::Node scalar(text);
+    scalar.SetStyle(YAML::EmitterStyle::Default);
+    Diagnostics local;
+    auto v = validate_value(param, scalar, file, key_path, local);
+    if (!local.empty() || !v.is_number()) {
+      // re-report with the right position
+      validate_value(param, n, file, key_path, diag);
+      return;
+    }
+    out.push_back(v.get<double>());
+  };
+  if (node.IsSequence()) {
+    for (const auto &n : node) {
+      if (!n.IsScalar()) {
+        diag.error(Location::of(file, n), key_path, "expected a value such as 70 mm/s");
+        continue;
+      }
+      one(n, n.Scalar());
+    }
+  } else if (node.IsMap() && node["from"] && node["to"] && node["step"]) {
+    Diagnostics local;
+    auto a = validate_value(param, node["from"], file, key_path + ".from", diag);
+    auto b = validate_value(param, node["to"], file, key_path + ".to", diag);
+    const sm_param_v1 step_param = {param.name, SM_NUMBER, param.unit, 0, 1e300, 0, nullptr, 0, nullptr, param.doc};
+    auto s = validate_value(step_param, node["step"], file, key_path + ".step", diag);
+    if (a.is_number() && b.is_number() && s.is_number()) {
+      const double from = a, to = b, step = s;
+      if (step <= 0) diag.error(Location::of(file, node["step"]), key_path + ".step", "must be positive");
+      else
+        for (int i = 0; from + i * step <= to + 1e-9 * std::abs(step); ++i) out.push_back(from + i * step);
+    }
+  } else if (node.IsScalar()) {
+    // "40, 70, 100 mm/s": one unit for the whole list
+    const std::string s = node.Scalar();
+    std::vector<std::string> parts;
+    std::size_t pos = 0;
+    while (pos <= s.size()) {
+      const std::size_t comma = s.find(',', pos);
+      parts.push_back(s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
+      if (comma == std::string::npos) break;
+      pos = comma + 1;
+    }
+    std::string unit;
+    {
+      const std::string &last = parts.back();
+      std::size_t used = 0;
+      try {
+        std::stod(last, &used);
+        unit = last.substr(used);
+      } catch (...) {
+      }
+    }
+    for (auto &p : parts) {
+      std::size_t used = 0;
+      bool bare = false;
+      try {
+        std::stod(p, &used);
+        bare = p.substr(used).find_first_not_of(" \t") == std::string::npos;
+      } catch (...) {
+      }
+      if (bare && !unit.empty()) p += " " + unit.substr(unit.find_first_not_of(" \t"));
+      const auto before = diag.errors().size();
+      YAML::Node copy = node;
+      Diagnostics local;
+      auto v = validate_value(param, YAML::Node(p), file, key_path, local);
+      if (!local.empty()) {
+        for (auto e : local.errors()) {
+          // attach the node's position
+          const std::string tag = "error: " + file + ": ";
+          if (e.rfind(tag, 0) == 0) e = "error: " + Location::of(file, node).str() + ": " + e.substr(tag.size());
+          diag.error(e);
+        }
+      } else {
+        out.push_back(v.get<double>());
+      }
+      (void)before;
+    }
+  } else {
+    diag.error(Location::of(file, node), key_path, "expected a list of values, e.g. [40 mm/s, 70 mm/s] or 40, 70 mm/s");
+  }
+  return out;
+}
+
+Design parse_design(const YAML::Node &node, const std::string &file, const std::string &key_path, const Scene &scene,
+                    PluginRegistry &registry, Diagnostics &diag) {
+  Design d;
+  if (!node || node.IsNull()) {
+    d.cases.push_back({});  // the scene itself, one case
+    return d;
+  }
+  if (!node.IsMap()) {
+    diag.error(Location::of(file, node), key_path,
+               "expected a mapping: {type: full_factorial, U: [...], omega: [...]}");
+    return d;
+  }
+  static const std::vector<std::string> types = {"full_factorial", "latin_hypercube", "list", "adaptive"};
+  if (node["type"]) {
+    d.type = node["type"].as<std::string>();
+    if (std::find(types.begin(), types.end(), d.type) == types.end()) {
+      const std::string near = closest(d.type, types);
+      diag.error(Location::of(file, node["type"]), key_path + ".type", "unknown design type '" + d.type + "'",
+                 (near.empty() ? "" : "did you mean '" + near + "'? ") + "types: " + join(types));
+      return d;
+    }
+  }
+  static const std::set<std::string> reserved = {"type",    "samples", "seed",         "cases",
+                                                 "initial", "budget",  "target_nrmse", "outputs"};
+  auto integer = [&](const char *key, std::size_t def, std::size_t lo, std::size_t hi) -> std::size_t {
+    if (!node[key]) return def;
+    const sm_param_v1 p = {key, SM_INTEGER, "-", double(lo), double(hi), 0, nullptr, 0, nullptr, ""};
+    auto v = validate_value(p, node[key], file, key_path + "." + key, diag);
+    return v.is_number() ? v.get<std::size_t>() : def;
+  };
+  for (const auto &kv : node) {
+    const std::string name = kv.first.as<std::string>();
+    if (reserved.count(name)) continue;
+    DesignVariable var;
+    std::string why;
+    if (!find_scene_key(scene, registry, name, var.key, why)) {
+      diag.error(Location::of(file, kv.first), key_path + "." + name, why);
+      continue;
+    }
+    if (var.key.param->type != SM_NUMBER && var.key.param->type != SM_INTEGER) {
+      diag.error(Location::of(file, kv.first), key_path + "." + name,
+                 "only numeric scene keys can be design variables");
+      continue;
+    }
+    var.values = parse_value_list(kv.second, *var.key.param, file, key_path + "." + name, diag);
+    if (var.values.empty()) diag.error(Location::of(file, kv.second), key_path + "." + name, "no values given");
+    d.variables.push_back(var);
+  }
+  const std::size_t nv = d.variables.size();
+  if (d.type == "full_factorial" || d.type == "adaptive") {
+    std::size_t total = 1;
+    for (const auto &v : d.variables) total *= std::max<std::size_t>(1, v.values.size());
+    for (std::size_t c = 0; c < total && nv > 0; ++c) {
+      std::vector<double> row(nv);
+      std::size_t rest = c;
+      for (std::size_t k = nv; k-- > 0;) {
+        const auto &vals = d.variables[k].values;
+        if (vals.empty()) break;
+        row[k] = vals[rest % vals.size()];
+        rest /= vals.size();
+      }
+      d.cases.push_back(row);
+    }
+    if (d.type == "adaptive") {
+      d.initial = integer("initial", std::min<std::size_t>(9, d.cases.size()), 2, 100000);
+      d.budget = integer("budget", d.cases.size(), 2, 100000);
+      if (node["target_nrmse"]) {
+        const sm_param_v1 p = {"target_nrmse", SM_NUMBER, "-", 0, 100, 0, nullptr, 0, nullptr, ""};
+        auto v = validate_value(p, node["target_nrmse"], file, key_path + ".target_nrmse", diag);
+        if (v.is_number()) d.target_nrmse = v;
+      }
+    }
+  } else if (d.type == "latin_hypercube") {
+    const std::size_t samples = integer("samples", 10, 1, 100000);
+    const std::size_t seed = integer("seed", 1, 0, 4294967295ull);
+    for (const auto &v : d.variables)
+      if (v.values.size() != 2)
+        diag.error(Location::of(file, node[v.key.name]), key_path + "." + v.key.name,
+                   "a latin_hypercube variable takes [min, max]");
+    if (diag.empty()) {
+      std::mt19937_64 rng(seed);
+      auto uniform = [&] { return double(rng() >> 11) * (1.0 / 9007199254740992.0); };
+      std::vector<std::vector<double>> cols(nv);
+      for (std::size_t k = 0; k < nv; ++k) {
+        std::vector<std::size_t> perm(samples);
+        for (std::size_t i = 0; i < samples; ++i) perm[i] = i;
+        for (std::size_t i = samples; i-- > 1;) std::swap(perm[i], perm[rng() % (i + 1)]);
+        for (std::size_t i = 0; i < samples; ++i) {
+          const double u = (perm[i] + uniform()) / double(samples);
+          cols[k].push_back(d.variables[k].values[0] + u * (d.variables[k].values[1] - d.variables[k].values[0]));
+        }
+      }
+      for (std::size_t i = 0; i < samples; ++i) {
+        std::vector<double> row(nv);
+        for (std::size_t k = 0; k < nv; ++k) row[k] = cols[k][i];
+        d.cases.push_back(row);
+      }
+    }
+  } else if (d.type == "list") {
+    const YAML::Node cases = node["cases"];
+    if (!cases || !cases.IsSequence() || cases.size() == 0) {
+      diag.error(Location::of(file, node), key_path + ".cases",
+                 "a list design needs cases: [{U: 40 mm/s, omega: 0}, ...]");
+      return d;
+    }
+    std::vector<std::string> names;
+    for (const auto &kv : cases[0]) {
+      DesignVariable var;
+      std::string why;
+      const std::string name = kv.first.as<std::string>();
+      if (!find_scene_key(scene, registry, name, var.key, why)) {
+        diag.error(Location::of(file, kv.first), key_path + ".cases[0]." + name, why);
+        continue;
+      }
+      d.variables.push_back(var);
+    }
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      std::vector<double> row;
+      for (const auto &var : d.variables) {
+        const YAML::Node v = cases[i][var.key.name];
+        const std::string path = key_path + ".cases[" + std::to_string(i) + "]." + var.key.name;
+        if (!v) {
+          diag.error(Location::of(file, cases[i]), path, "missing (every case names the same variables)");
+          row.push_back(0);
+          continue;
+        }
+        auto j = validate_value(*var.key.param, v, file, path, diag);
+        row.push_back(j.is_number() ? j.get<double>() : 0.0);
+      }
+      d.cases.push_back(row);
+      // a key the first case does not have (a typo, most often): named, with the nearest variable
+      std::vector<std::string> known;
+      for (const auto &var : d.variables) known.push_back(var.key.name);
+      if (cases[i].IsMap())
+        for (const auto &kv : cases[i]) {
+          const std::string name = kv.first.as<std::string>();
+          if (std::find(known.begin(), known.end(), name) != known.end() || i == 0) continue;
+          const std::string near = closest(name, known);
+          diag.error(Location::of(file, kv.first), key_path + ".cases[" + std::to_string(i) + "]." + name,
+                     "not a variable of the first case (every case names the same variables)",
+                     near.empty() ? "the first case names: " + join(known) : "did you mean '" + near + "'?");
+        }
+    }
+  }
+  if (d.cases.empty() && nv == 0) d.cases.push_back({});
+  return d;
+}
+
+Scene case_scene(const Scene &scene, const Design &design, std::size_t index) {
+  Scene s = scene;
+  for (std::size_t k = 0; k < design.variables.size(); ++k)
+    apply_scene_value(s, design.variables[k].key, design.cases[index][k]);
+  return s;
+}
+
+nlohmann::json case_inputs(const Design &design, std::size_t index) {
+  nlohmann::json in = nlohmann::json::object();
+  for (std::size_t k = 0; k < design.variables.size(); ++k) in[design.variables[k].key.name] = design.cases[index][k];
+  return in;
+}
+
+}  // namespace spreadmap

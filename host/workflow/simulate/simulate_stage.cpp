@@ -1,0 +1,113 @@
+// simulate: hands every unfinished case of the design to the run's executor (here in --jobs threads,
+// on MPI ranks or as Slurm tasks), each resumable; a finished case whose inputs did not change is
+// never recomputed.
+#include <spdlog/spdlog.h>
+
+#include "core/error.hpp"
+#include "core/files.hpp"
+#include "core/schema.hpp"
+#include "cuda/backend.hpp"
+#include "workflow/simulate/adaptive_run.hpp"
+#include "workflow/simulate/coarse_grain.hpp"
+#include "workflow/simulate/design.hpp"
+#include "workflow/executors/executor_hook.hpp"
+#include "workflow/figures/figure_style.hpp"
+#include "workflow/figures/stage_figures.hpp"
+#include "workflow/stage.hpp"
+
+namespace spreadmap {
+namespace {
+
+class SimulateStage : public Stage {
+ public:
+  void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
+                Diagnostics &diag) override {
+    const std::string file = wf.file.string();
+    for (const auto &kv : entry.config) {
+      const std::string key = kv.first.as<std::string>();
+      if (key == "render") {
+        style_ = figures::read_style(kv.second, true, true, file, "simulate.render", diag);
+        render_ = style_.on;
+      }
+      if (key != "design" && key != "render")
+        diag.error(Location::of(file, kv.first), "simulate." + key, "unknown key", "known: design, render");
+    }
+    if (!scene) return;  // scene errors already reported
+    design_ = parse_design(entry.config["design"], file, "simulate.design", *scene, registry, diag);
+  }
+
+  void run(StageContext &ctx) override {
+    figures::use_style(style_);
+    if (design_.type == "adaptive") return run_adaptive_design(ctx, design_, render_);
+    const std::size_t n = design_.cases.size();
+    const auto &only_case = ctx.options.only_case;
+    if (only_case && *only_case >= n)
+      throw InputError("error: --case " + std::to_string(*only_case) + ": the design has " + std::to_string(n) +
+                       " cases, numbered 0 to " + std::to_string(n - 1));
+    CaseBatch batch{{}, n};  // the unfinished cases
+    nlohmann::json cases = nlohmann::json::array();
+    for (std::size_t i = 0; i < n; ++i) {
+      if (only_case && i != *only_case) continue;
+      CaseRequest req;
+      req.id = RunDirectory::case_id(i);
+      req.scene = case_scene(ctx.scene, design_, i);
+      req.inputs = case_inputs(design_, i);
+      req.dir = ctx.run.case_dir(req.id);
+      req.heaps = ctx.run.heaps();
+      const std::string hash = case_hash(req.scene);
+      cases.push_back({{"id", req.id}, {"inputs", req.inputs}, {"hash", hash}});
+      if (!ctx.options.force && case_finished(req.dir, hash)) continue;
+      if (ctx.options.force) {
+        std::error_code ec;
+        fs::remove(req.dir / "checkpoint.bin", ec);
+      }
+      write_scene_file(req.dir / "scene.json", coarse_grained(req.scene, ctx.registry));  // as the engine runs it
+      batch.jobs.push_back({i, std::move(req), render_});
+    }
+    if (ctx.options.records_manifest())
+      ctx.run.update_manifest([&](nlohmann::json &m) {
+        nlohmann::json old = m.value("cases", nlohmann::json::array());
+        for (auto &c : cases)
+          for (const auto &o : old)
+            if (o.value("id", "") == c["id"] && o.value("hash", "") == c["hash"])
+              for (const char *k : {"start", "end", "wall_seconds", "status", "rank", "host"})
+                if (o.contains(k)) c[k] = o[k];
+        // Finished where no record says so: by a Slurm array task (they leave the manifest alone), or
+        // on an MPI rank killed before rank 0 heard of it. case.json is the proof.
+        for (auto &c : cases)
+          if (!c.contains("status") &&
+              case_finished(ctx.run.case_dir(c["id"].get<std::string>()), c["hash"].get<std::string>()))
+            c["status"] = "done";
+        m["cases"] = cases;
+        m["design"] = {{"type", design_.type}, {"variables", [&] {
+                                                  auto v = nlohmann::json::array();
+                                                  for (const auto &d : design_.variables)
+                                                    v.push_back({{"name", d.key.name}, {"unit", d.key.param->unit}});
+                                                  return v;
+                                                }()}};
+        m["plugins"]["contact/" + ctx.scene.contact.use] =
+            ctx.registry.get("contact", ctx.scene.contact.use).descriptor->version;
+        m["plugins"]["spreader/" + ctx.scene.spreader.use] =
+            ctx.registry.get("spreader", ctx.scene.spreader.use).descriptor->version;
+      });
+    if (only_case)
+      spdlog::info("simulate: case {} of {}: {}", RunDirectory::case_id(*only_case), n,
+                   batch.jobs.empty() ? "finished already" : "to run");
+    else
+      spdlog::info("simulate: {} cases, {} to run, {} finished already", n, batch.jobs.size(), n - batch.jobs.size());
+    std::string backend_note;  // throws InputError for `cuda` with no usable device, before any case runs
+    cuda::choose_backend(ctx.scene.backend, backend_note);
+    ctx.options.executor->run_cases(batch, ctx);
+  }
+
+ private:
+  Design design_;
+  figures::Style style_;
+  bool render_ = true;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_simulate_stage() { return std::make_unique<SimulateStage>(); }
+
+}  // namespace spreadmap

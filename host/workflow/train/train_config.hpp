@@ -1,0 +1,31 @@
+// The train stage's settings, read and checked from the workflow file. The map stage reads them
+// too, to know which models the workflow trains.
+#pragma once
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/diagnostics.hpp"
+#include "core/registry.hpp"
+#include "workflow/figures/figure_style.hpp"
+#include "workflow/workflow.hpp"
+
+namespace spreadmap {
+
+struct TrainConfig {
+  std::vector<std::pair<std::string, nlohmann::json>> models;  // name, validated parameters
+  std::vector<std::string> inputs;                             // empty = the design's variables
+  std::vector<std::string> outputs = {"vs", "rq"};
+  std::string split = "study";
+  std::size_t folds = 5;
+  std::uint64_t seed = 1;
+  bool render = true;
+  figures::Style style;  // render: true | false | {width, vector}
+};
+
+// model: bpnn | [bpnn, gp]; params: {...} (one model) or params: {bpnn: {...}, gp: {...}};
+// inputs, outputs: lists of column names; split: study | kfold | column; folds; seed; render.
+TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, PluginRegistry &registry, Diagnostics &diag);
+
+}  // namespace spreadmap

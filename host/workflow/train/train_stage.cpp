@@ -1,0 +1,58 @@
+// train: fits each named surrogate to metrics.csv (inputs: the design's variables; outputs: V_s
+// and R_q unless given) and scores it as the study's Table 4, into train/<model>/.
+#include <spdlog/spdlog.h>
+
+#include "analysis/table.hpp"
+#include "core/error.hpp"
+#include "core/schema.hpp"
+#include "core/suggest.hpp"
+#include "workflow/stage.hpp"
+#include "workflow/train/train_config.hpp"
+#include "workflow/train/training.hpp"
+
+namespace spreadmap {
+namespace {
+
+class TrainStage : public Stage {
+ public:
+  void validate(const Workflow &wf, const StageEntry &entry, const Scene *, PluginRegistry &registry,
+                Diagnostics &diag) override {
+    config_ = read_train_config(wf, entry, registry, diag);
+  }
+
+  void run(StageContext &ctx) override {
+    figures::use_style(config_.style);
+    const fs::path csv = ctx.run.metrics_csv();
+    if (!fs::exists(csv))
+      throw InputError("error: train: " + csv.string() + " does not exist; run the characterise stage first");
+    const auto table = analysis::Table::read_csv(csv.string());
+    std::vector<std::string> inputs = config_.inputs;
+    if (inputs.empty())
+      for (const auto &v : ctx.run.manifest()["design"].value("variables", nlohmann::json::array()))
+        inputs.push_back(v["name"]);
+    for (auto &[model, params] : config_.models) {
+      TrainRequest rq;
+      rq.model = model;
+      rq.params = params;
+      rq.inputs = inputs;
+      rq.outputs = config_.outputs;
+      rq.split = config_.split;
+      rq.folds = config_.folds;
+      rq.seed = config_.seed;
+      rq.units = units_beside(csv);
+      const auto result = train_surrogate(ctx.registry, table, rq, ctx.run.train_dir(model), config_.render);
+      for (const auto &o : result.report.outputs)
+        spdlog::info("train {}: {} NRMSE train {:.2f} %, test {:.2f} %; R train {:.4f}, test {:.4f}", model, o.name,
+                     o.nrmse_train, o.nrmse_test, o.r_train, o.r_test);
+    }
+  }
+
+ private:
+  TrainConfig config_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_train_stage() { return std::make_unique<TrainStage>(); }
+
+}  // namespace spreadmap
