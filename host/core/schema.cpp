@@ -264,4 +264,11 @@ std::string describe_schema(const sm_plugin_v1 &d) {
   return out;
 }
 
+nlohmann::json default_params(const sm_plugin_v1 &p, const std::string &what) {
+  Diagnostics diag;
+  auto values = validate_params(SchemaView::of(p), YAML::Node(), "<defaults>", what, diag);
+  diag.throw_if_any();
+  return values;
+}
+
 }  // namespace spreadmap

@@ -25,6 +25,10 @@ nlohmann::json validate_params(const SchemaView &schema, const YAML::Node &secti
                                const std::string &key_path, Diagnostics &diag, const std::set<std::string> &skip = {},
                                bool fill_defaults = true);
 
+// Every key of a plugin's schema at its default (SI); throws InputError when one is required. `what`
+// names the plugin in that message ("surrogate/gp").
+nlohmann::json default_params(const sm_plugin_v1 &p, const std::string &what);
+
 // Adds the default of every schema key missing from `values`; records a missing required value.
 void fill_defaults(const SchemaView &schema, nlohmann::json &values, const Location &where, const std::string &key_path,
                    Diagnostics &diag);

@@ -13,17 +13,6 @@
 
 namespace spreadmap {
 
-namespace {
-
-nlohmann::json defaults_of(const LoadedPlugin &p) {
-  Diagnostics diag;
-  auto v = validate_params(SchemaView::of(*p.descriptor), YAML::Node(), "<defaults>", p.id(), diag);
-  diag.throw_if_any();
-  return v;
-}
-
-}  // namespace
-
 void run_adaptive_design(StageContext &ctx, const Design &design, bool render) {
   const std::size_t n = design.cases.size(), d = design.variables.size();
   Eigen::MatrixXd candidates(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(d));
@@ -31,7 +20,7 @@ void run_adaptive_design(StageContext &ctx, const Design &design, bool render) {
     for (std::size_t k = 0; k < d; ++k) candidates(Eigen::Index(i), Eigen::Index(k)) = design.cases[i][k];
 
   const LoadedPlugin &gp = ctx.registry.get("surrogate", "gp");
-  const std::string gp_params = defaults_of(gp).dump();
+  const std::string gp_params = default_params(*gp.descriptor, gp.id()).dump();
 
   analysis::AdaptiveOptions opt;
   opt.budget = std::min(design.budget ? design.budget : n, n);
