@@ -15,6 +15,8 @@
 #include "core/suggest.hpp"
 #include "workflow/command_line.hpp"
 #include "workflow/commands.hpp"
+#include "workflow/scene_file/scene_build.hpp"
+#include "workflow/workflow.hpp"
 #include "workflow/stage.hpp"
 
 namespace po = boost::program_options;
@@ -26,7 +28,8 @@ constexpr const char *usage = R"(usage: spreadmap <command> [options]
 
 commands:
   run WORKFLOW        run a workflow (simulate -> characterise -> train -> map)
-  validate WORKFLOW   check a workflow completely without running anything
+  simulate SCENE      run one explicit scene file (particles, walls, outputs; docs/scenes.md)
+  validate FILE       check a workflow or a scene file completely without running anything
   plugins [NAME]      list plugins and their parameters (the reference manual)
   characterise STATE  layer metrics of a particle file (.vtp or .csv)
   train TABLE         fit a surrogate to a CSV table
@@ -133,16 +136,23 @@ int cmd_validate(int argc, char **argv) {
   po::options_description d("validate options");
   std::vector<std::string> files;
   Common c;
-  d.add_options()("workflow", po::value(&files)->required()->multitoken(), "workflow file(s)");
+  d.add_options()("workflow", po::value(&files)->required()->multitoken(),
+                  "workflow or scene file(s): a file with neither stages nor scene at its top is a scene file");
   c.add(d);
   po::positional_options_description p;
   p.add("workflow", -1);
   po::variables_map vm;
-  if (!parse(argc, argv, d, p, vm, "validate WORKFLOW [WORKFLOW...]")) return 0;
+  if (!parse(argc, argv, d, p, vm, "validate FILE [FILE...]")) return 0;
   c.apply();
   int failures = 0;
   for (const auto &f : files) {
     try {
+      if (sm::scene_file::is_scene_document(sm::load_yaml(f))) {
+        const auto loaded = sm::scene_file::load_scene(f, sm::PluginRegistry::global());
+        std::cout << f << ": ok (scene file: " << loaded.particles.set.size() << " particles, "
+                  << loaded.scene.walls.size() << " walls)\n";
+        continue;
+      }
       auto v = sm::validate_workflow(f, sm::PluginRegistry::global());
       std::cout << f << ": ok (" << v.wf.stages.size() << " stages)\n";
     } catch (const sm::Error &e) {
@@ -237,8 +247,8 @@ int main(int argc, char **argv) {
     if (cmd == "validate") return cmd_validate(argc - 1, argv + 1);
     if (cmd == "plugins") return cmd_plugins(argc - 1, argv + 1);
     if (auto sub = sm::find_command(cmd)) return sub(argc - 1, argv + 1);
-    const std::vector<std::string> cmds = {"run",   "validate", "plugins", "characterise",
-                                           "train", "map",      "query",   "render"};
+    const std::vector<std::string> cmds = {"run", "validate", "plugins", "characterise", "train",
+                                           "map", "query",    "render",  "simulate"};
     const std::string near = sm::closest(cmd, cmds);
     std::cerr << "error: unknown command '" << cmd << "'" << (near.empty() ? "" : "; did you mean '" + near + "'?")
               << "\n"

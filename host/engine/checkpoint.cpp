@@ -131,7 +131,8 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
       state_.list.hist.size() != state_.list.nbr.size() * state_.pair_law.ops->history)
     r.fail("an inconsistent neighbour list");
   state_.list.restore_mirror(state_.settings.pairs_once, state_.pair_law.ops->history);
-  asleep_ = std::size_t(std::count(p.mobile.begin(), p.mobile.end(), Real(0)));
+  fixed_ = std::size_t(std::count(p.inv_m.begin(), p.inv_m.end(), Real(0)));
+  asleep_ = std::size_t(std::count(p.mobile.begin(), p.mobile.end(), Real(0))) - fixed_;
   if (state_.settings.sleep) find_border();
   for (auto &ge : state_.geometries) ge.near_valid = false;  // searched again at the next evaluation
   forces_zeroed_ = false;

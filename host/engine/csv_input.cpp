@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fmt/format.h>
 #include <fstream>
+#include <numbers>
 #include <optional>
 #include <string_view>
 
@@ -15,8 +16,9 @@ namespace spreadmap::engine {
 
 namespace {
 
-constexpr std::array<std::string_view, 12> known = {"x",  "y",  "z",  "radius", "vx",   "vy",
-                                                    "vz", "wx", "wy", "wz",     "mass", "id"};
+constexpr std::array<std::string_view, 14> known = {"x",  "y",  "z",  "radius", "vx",      "vy",    "vz",
+                                                    "wx", "wy", "wz", "mass",   "density", "fixed", "id"};
+constexpr int density_column = 11, fixed_column = 12, id_column = 13;
 constexpr std::size_t n_required = 4;
 
 std::string_view trim(std::string_view s) {
@@ -54,7 +56,7 @@ std::vector<Field> split(std::string_view line) {
 
 }  // namespace
 
-ParticleSet read_particles_csv(const std::filesystem::path &path) {
+ParticleSet read_particles_csv(const std::filesystem::path &path, std::vector<std::size_t> *lines) {
   std::ifstream in(path);
   if (!in) throw SetupError(fmt::format("{}: cannot open the particle file for reading", path.string()));
   const std::string file = path.string();
@@ -63,9 +65,10 @@ ParticleSet read_particles_csv(const std::filesystem::path &path) {
   std::vector<int> slot;  // per CSV column: index into `known`
   bool have_header = false;
   ParticleSet s;
-  std::array<std::vector<double> *, 11> columns = {&s.x,  &s.y,  &s.z,  &s.radius, &s.vx,  &s.vy,
-                                                   &s.vz, &s.wx, &s.wy, &s.wz,     &s.mass};
-  std::array<bool, 12> present{};
+  std::vector<double> density;
+  std::array<std::vector<double> *, 12> columns = {&s.x,  &s.y,  &s.z,  &s.radius, &s.vx,   &s.vy,
+                                                   &s.vz, &s.wx, &s.wy, &s.wz,     &s.mass, &density};
+  std::array<bool, known.size()> present{};
   while (std::getline(in, line)) {
     ++line_no;
     if (!line.empty() && line.back() == '\r') line.pop_back();
@@ -79,7 +82,7 @@ ParticleSet read_particles_csv(const std::filesystem::path &path) {
         if (it == known.end())
           throw SetupError(
               fmt::format("{}:{}:{}: unknown column '{}'; allowed: x, y, z, radius (required), vx, vy, vz, "
-                          "wx, wy, wz, mass, id",
+                          "wx, wy, wz, mass or density, fixed, id",
                           file, line_no, f.column, f.text));
         const int k = static_cast<int>(it - known.begin());
         if (present[k])
@@ -91,6 +94,9 @@ ParticleSet read_particles_csv(const std::filesystem::path &path) {
         if (!present[k])
           throw SetupError(fmt::format("{}:{}:1: the header has no '{}' column; required: x, y, z, radius", file,
                                        line_no, known[k]));
+      if (present[10] && present[density_column])
+        throw SetupError(
+            fmt::format("{}:{}:1: the header names both mass and density; keep one of them", file, line_no));
       have_header = true;
       continue;
     }
@@ -110,7 +116,15 @@ ParticleSet read_particles_csv(const std::filesystem::path &path) {
         throw SetupError(fmt::format("{}:{}:{}: radius = {} m; a radius must be > 0", file, line_no, f.column, v));
       if (k == 10 && !(v > 0))
         throw SetupError(fmt::format("{}:{}:{}: mass = {} kg; a mass must be > 0", file, line_no, f.column, v));
-      if (k == 11) {
+      if (k == density_column && !(v > 0))
+        throw SetupError(
+            fmt::format("{}:{}:{}: density = {} kg/m^3; a density must be > 0", file, line_no, f.column, v));
+      if (k == fixed_column) {
+        if (v != 0 && v != 1)
+          throw SetupError(fmt::format("{}:{}:{}: fixed = {}; write 1 (the particle never moves) or 0", file, line_no,
+                                       f.column, f.text));
+        s.fixed.push_back(static_cast<std::uint8_t>(v));
+      } else if (k == id_column) {
         if (v < 0 || v >= 4294967295.0 || v != std::floor(v))
           throw SetupError(fmt::format("{}:{}:{}: id = {}; an id must be a whole number in [0, 4294967294]", file,
                                        line_no, f.column, f.text));
@@ -119,9 +133,12 @@ ParticleSet read_particles_csv(const std::filesystem::path &path) {
         columns[k]->push_back(v);
       }
     }
+    if (lines) lines->push_back(line_no);
   }
   if (!have_header)
     throw SetupError(fmt::format("{}:1:1: empty file; expected a header line such as 'x,y,z,radius'", file));
+  for (std::size_t i = 0; i < density.size(); ++i)
+    s.mass.push_back(density[i] * 4.0 / 3.0 * std::numbers::pi * s.radius[i] * s.radius[i] * s.radius[i]);
   return s;
 }
 

@@ -34,6 +34,8 @@ void ParticleSet::validate(const std::string &what) const {
     check_length(*c, name, n, true, what);
   if (!id.empty() && id.size() != n)
     throw SetupError(fmt::format("{}: column 'id' has {} entries but x has {}", what, id.size(), n));
+  if (!fixed.empty() && fixed.size() != n)
+    throw SetupError(fmt::format("{}: column 'fixed' has {} entries but x has {}", what, fixed.size(), n));
   for (auto [c, name] : {std::pair{&x, "x"},
                          {&y, "y"},
                          {&z, "z"},

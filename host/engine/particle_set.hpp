@@ -16,6 +16,9 @@ struct ParticleSet {
   std::vector<double> radius;      // [m]
   std::vector<double> mass;        // [kg]                   (optional)
   std::vector<std::uint32_t> id;   // stable identity         (optional)
+  // 1: the particle never moves (zero velocity, not integrated; an infinite mass to the particles
+  // it touches). Optional: empty means none is fixed.
+  std::vector<std::uint8_t> fixed;
 
   std::size_t size() const { return x.size(); }
   // Throws SetupError naming the first column whose length differs from x (empty optional columns

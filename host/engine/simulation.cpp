@@ -101,6 +101,9 @@ template <class Real> void Simulation<Real>::add_particles(ParticleSet set, doub
   set.fill_defaults(density, next_id_);
   const std::size_t old_n = p.size(), n = old_n + set.size();
   if (n >= no_index) throw SetupError("add_particles: more than 4e9 particles");
+  const bool any_fixed = std::find(set.fixed.begin(), set.fixed.end(), std::uint8_t(1)) != set.fixed.end();
+  if (any_fixed && backend_)
+    throw SetupError("add_particles: fixed particles step on the CPU only; add them before choosing a backend");
   p.resize(n);
   for (std::size_t k = 0; k < set.size(); ++k) {
     double pos[3] = {set.x[k], set.y[k], set.z[k]};
@@ -135,6 +138,12 @@ template <class Real> void Simulation<Real>::add_particles(ParticleSet set, doub
     p.list_index[i] = no_index;
     p.mobile[i] = 1;
     p.calm[i] = 0;
+    if (!set.fixed.empty() && set.fixed[k]) {
+      p.vx[i] = p.vy[i] = p.vz[i] = p.wx[i] = p.wy[i] = p.wz[i] = 0;
+      p.m[i] = Real(set.mass[k] * fixed_mass_scale);
+      p.inv_m[i] = p.inv_i[i] = p.mobile[i] = 0;
+      ++fixed_;
+    }
     next_id_ = std::max(next_id_, set.id[k] + 1);
   }
   state_.resize_walls();
@@ -161,6 +170,14 @@ template <class Real> ParticleSet Simulation<Real>::state() const {
   copy(p.r, s.radius);
   copy(p.m, s.mass);
   s.id = p.id;
+  if (fixed_ > 0) {
+    s.fixed.assign(n, 0);
+    for (std::size_t i = 0; i < n; ++i)
+      if (p.inv_m[i] == 0) {
+        s.fixed[i] = 1;
+        s.mass[i] /= fixed_mass_scale;
+      }
+  }
   return s;
 }
 
@@ -701,7 +718,7 @@ template <class Real> KickDrift<Real> Simulation<Real>::integration(Real half_dt
                     {},
                     {},
                     state_.rotate,
-                    asleep_ > 0};
+                    asleep_ + fixed_ > 0};
   for (int a = 0; a < 3; ++a) {
     k.g[a] = Real(state_.settings.gravity[a]);
     k.lo[a] = Real(state_.domain.lo[a]);
@@ -808,6 +825,7 @@ template <class Real> void Simulation<Real>::prepare() {
 }
 
 template <class Real> void Simulation<Real>::set_backend(std::unique_ptr<StepBackend<Real>> backend) {
+  if (backend && fixed_ > 0) throw SetupError("this scene has fixed particles: it steps on the CPU only");
   sync_host();
   backend_ = std::move(backend);
   device_ahead_ = false;
@@ -862,13 +880,13 @@ template <class Real> void Simulation<Real>::step() {
   compute_forces();
   // The second half kick waits for the next step's first, which runs it in the same pass
   // (kick_and_drift), unless the state is read or changed before (sync_host). Sleeping reads the
-  // velocities now.
-  if (state_.settings.sleep) kick_and_check(half);
+  // velocities now; immobile (fixed) particles need the kick that reads mobility.
+  if (state_.settings.sleep || fixed_ > 0) kick_and_check(half);
   else second_kick_pending_ = true;
   if (state_.step % state_.settings.check_every == 0) check_overlaps();
   ++state_.counters.steps;
   state_.counters.particle_steps += double(p.size());
-  state_.counters.integrated_particle_steps += double(p.size() - asleep_);
+  state_.counters.integrated_particle_steps += double(p.size() - asleep_ - fixed_);
   if (state_.settings.sleep) update_sleep();
   state_.counters.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -913,7 +931,7 @@ template <class Real> void Simulation<Real>::find_border() {
 
 template <class Real> void Simulation<Real>::wake(std::uint32_t i) {
   auto &p = state_.particles;
-  if (p.mobile[i] != 0) return;
+  if (p.mobile[i] != 0 || p.inv_m[i] == 0) return;  // awake, or fixed for good
   p.mobile[i] = 1;
   p.calm[i] = 0;
   --asleep_;

@@ -47,7 +47,13 @@ template <class Real = double> class Simulation {
   // Adds particles (validated; empty optional columns filled: zero velocities, masses from density
   // when `mass` is empty, fresh ids when `id` is empty). Periodic coordinates are wrapped; a centre
   // outside an open axis is an error. The time step is chosen again before the next step.
+  // Fixed particles (set.fixed) never move: their velocities are zero and they are not integrated;
+  // to the particles they touch they weigh fixed_mass_scale times their mass (an immovable body,
+  // as a wall is: the contact's reduced mass is the moving particle's to 1e-12). state() reports
+  // their own mass. Scenes with fixed particles step on the CPU.
   void add_particles(ParticleSet set, double density = 0);
+  static constexpr double fixed_mass_scale = 0x1p40;  // a power of two: the mass comes back exactly
+  std::size_t fixed_count() const { return fixed_; }
   std::size_t size() const { return state_.particles.size(); }
   // The current state in the engine's current (cell-sorted) order, in double.
   ParticleSet state() const;
@@ -98,6 +104,12 @@ template <class Real = double> class Simulation {
   std::uint64_t removed_count() const { return state_.counters.removed; }
   const RunCounters &counters() const { return state_.counters; }
   bool rotation_integrated() const { return state_.rotate; }
+  // The neighbour list over arrays()' order: it holds every touching pair of the current state
+  // (per-contact outputs evaluate the law on its entries).
+  const NeighbourList<Real> &neighbours() const {
+    sync_host();
+    return state_.list;
+  }
   std::size_t list_entries() const {
     sync_host();
     return state_.list.entries();
@@ -153,6 +165,8 @@ template <class Real = double> class Simulation {
   // sleeping neighbour (those whose motion can wake one).
   double sleep_x_max_ = -std::numeric_limits<double>::infinity();
   std::size_t asleep_ = 0, asleep_at_build_ = 0;
+  // Fixed particles (mobile 0 and 1/m = 0 for good): integrated as sleeping ones are, never woken.
+  std::size_t fixed_ = 0;
   std::vector<std::uint32_t> border_;
   // The backend and which copy of the state is newer.
   std::unique_ptr<StepBackend<Real>> backend_;

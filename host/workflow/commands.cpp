@@ -7,6 +7,7 @@ int cmd_train(int argc, char **argv);
 int cmd_map(int argc, char **argv);
 int cmd_query(int argc, char **argv);
 int cmd_render(int argc, char **argv);
+int cmd_simulate(int argc, char **argv);
 
 Command find_command(const std::string &name) {
   if (name == "characterise" || name == "characterize") return cmd_characterise;
@@ -14,6 +15,7 @@ Command find_command(const std::string &name) {
   if (name == "map") return cmd_map;
   if (name == "query") return cmd_query;
   if (name == "render") return cmd_render;
+  if (name == "simulate") return cmd_simulate;
   return {};
 }
 

@@ -1,7 +1,7 @@
-// Every shipped workflow, mutated leaf by leaf, through the real binary (`spreadmap validate`): each
-// scalar becomes a word, a NaN, 1e308 and a quantity of the wrong dimension, and each key gets a
-// typo. Whatever the mutation, the program must answer as it does for any bad input — exit 0 (the
-// mutation happens to be valid) or 2, never a signal, never a raw library message (a JSON or YAML
+// Every shipped workflow and example scene file, mutated leaf by leaf, through the real binary
+// (`spreadmap validate`): each scalar becomes a word, a NaN, 1e308 and a quantity of the wrong
+// dimension, and each key gets a typo. Whatever the mutation, the program must answer as it does for any bad input —
+// exit 0 (the mutation happens to be valid) or 2, never a signal, never a raw library message (a JSON or YAML
 // exception, a sanitizer report) — and an error must name the file and the key it refuses.
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -91,10 +91,12 @@ std::vector<Mutant> mutants(const fs::path &workflow) {
   return out;
 }
 
+// The shipped workflows and example scene files (`spreadmap validate` checks both kinds).
 std::vector<fs::path> shipped_workflows() {
   std::vector<fs::path> files;
-  for (const auto &e : fs::directory_iterator(fs::path(SPREADMAP_SOURCE_DIR) / "workflows"))
-    if (e.path().extension() == ".yaml") files.push_back(e.path());
+  for (const char *folder : {"workflows", "examples/scenes"})
+    for (const auto &e : fs::directory_iterator(fs::path(SPREADMAP_SOURCE_DIR) / folder))
+      if (e.path().extension() == ".yaml") files.push_back(e.path());
   std::sort(files.begin(), files.end());
   return files;
 }
@@ -107,7 +109,7 @@ TEST_P(Mutation, EveryMutantGetsACleanAnswer) {
   const fs::path dir = fs::temp_directory_path() / ("spreadmap_mutation_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const fs::path file = dir / GetParam().filename();
-  // scene files a workflow names are relative to it
+  // scene files a workflow names (and particle files a scene names) are relative to it
   for (const auto &e : fs::directory_iterator(GetParam().parent_path()))
     if (e.is_regular_file() && e.path().extension() != ".yaml")
       fs::copy_file(e.path(), dir / e.path().filename(), fs::copy_options::overwrite_existing);

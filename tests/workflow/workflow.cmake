@@ -35,3 +35,5 @@ if(TARGET spreadmap_render)
 endif()
 spreadmap_workflow_test(mutation SOURCES ${CMAKE_CURRENT_LIST_DIR}/mutation_test.cpp TIMEOUT 900)
 target_link_libraries(test_workflow_mutation PRIVATE yaml-cpp)
+# The example scenes (examples/scenes/) run by `spreadmap simulate` against their closed forms.
+spreadmap_workflow_test(scenes SOURCES ${CMAKE_CURRENT_LIST_DIR}/scenes_test.cpp TIMEOUT 300)
