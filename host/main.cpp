@@ -29,6 +29,7 @@ constexpr const char *usage = R"(usage: spreadmap <command> [options]
 commands:
   run WORKFLOW        run a workflow (simulate -> characterise -> train -> map)
   simulate SCENE      run one explicit scene file (particles, walls, outputs; docs/scenes.md)
+  calibrate FILE      friction and rolling friction from measured bulk angles (docs/calibration.md)
   validate FILE       check a workflow or a scene file completely without running anything
   plugins [NAME]      list plugins and their parameters (the reference manual)
   characterise STATE  layer metrics of a particle file (.vtp or .csv)

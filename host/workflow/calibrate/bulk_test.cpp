@@ -1,0 +1,81 @@
+#include "workflow/calibrate/bulk_test.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <fstream>
+
+#include "core/error.hpp"
+#include "core/files.hpp"
+#include "core/stop.hpp"
+#include "workflow/scene_file/scene_run.hpp"
+
+namespace spreadmap::calibrate {
+namespace {
+
+nlohmann::json parameters_json(const std::vector<ParameterRange> &names, const std::vector<double> &values) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t k = 0; k < names.size(); ++k) j[names[k].name] = values[k];
+  return j;
+}
+
+AngleFit fit_from(const nlohmann::json &j) {
+  AngleFit a;
+  a.angle_deg = j.at("angle_deg");
+  a.spread_deg = j.at("spread_deg");
+  a.uncertainty_deg = j.at("uncertainty_deg");
+  a.parts_deg = j.at("parts_deg").get<std::vector<double>>();
+  a.points = j.at("points");
+  return a;
+}
+
+}  // namespace
+
+BulkResult run_bulk_test(const BulkTest &test, const std::vector<ParameterRange> &names,
+                         const std::vector<double> &values, const std::filesystem::path &record,
+                         PluginRegistry &registry) {
+  const nlohmann::json params = parameters_json(names, values);
+  if (std::filesystem::exists(record)) {
+    std::ifstream in(record);
+    const auto j = nlohmann::json::parse(in, nullptr, false);
+    if (!j.is_discarded() && j.value("scene", "") == test.scene.string() &&
+        j.value("parameters", nlohmann::json()) == params) {
+      BulkResult r;
+      r.angle = fit_from(j);
+      r.particles = j.value("particles", std::size_t(0));
+      r.steps = j.value("steps", std::uint64_t(0));
+      r.wall_seconds = j.value("wall_seconds", 0.0);
+      r.reused = true;
+      return r;
+    }
+  }
+  auto loaded = scene_file::load_scene(test.scene, registry);
+  for (std::size_t k = 0; k < names.size(); ++k) loaded.scene.pair_law[names[k].name] = values[k];
+  const auto t0 = std::chrono::steady_clock::now();
+  auto run = scene_file::build_scene(loaded, registry);
+  const auto keep_going = [](const engine::Simulation<double> &) { return !stop_requested(); };
+  if (!scene_file::advance_scene(*run, loaded.scene.run.duration, keep_going))
+    throw Interrupted(fmt::format("interrupted in {} at {}; the finished runs are kept", test.name, params.dump()));
+  BulkResult r;
+  const engine::ParticleSet state = run->sim->state();
+  r.angle = test.measure == Measure::heap_angle ? heap_angle(state, test.plate_z) : bed_angle(state, 2);
+  r.particles = state.size();
+  r.steps = run->sim->step_count();
+  r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const nlohmann::json j = {{"test", test.name},
+                            {"scene", test.scene.string()},
+                            {"parameters", params},
+                            {"angle_deg", r.angle.angle_deg},
+                            {"spread_deg", r.angle.spread_deg},
+                            {"uncertainty_deg", r.angle.uncertainty_deg},
+                            {"parts_deg", r.angle.parts_deg},
+                            {"points", r.angle.points},
+                            {"particles", r.particles},
+                            {"steps", r.steps},
+                            {"wall_seconds", r.wall_seconds}};
+  write_atomic(record, j.dump(2) + "\n");
+  return r;
+}
+
+}  // namespace spreadmap::calibrate

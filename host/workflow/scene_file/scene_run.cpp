@@ -1,0 +1,21 @@
+#include "workflow/scene_file/scene_run.hpp"
+
+#include <algorithm>
+
+namespace spreadmap::scene_file {
+
+bool advance_scene(SceneRun &run, double t, const engine::Simulation<double>::StepCallback &keep_going,
+                   std::uint64_t every) {
+  auto &sim = *run.sim;
+  std::vector<DelayedMotion> due;
+  for (const auto &m : run.delayed)
+    if (m.start >= sim.time() && m.start <= t) due.push_back(m);
+  std::sort(due.begin(), due.end(), [](const auto &a, const auto &b) { return a.start < b.start; });
+  for (const auto &m : due) {
+    if (!sim.run_until(m.start, keep_going, every)) return false;
+    sim.set_plane_wall_velocity(m.plane, m.velocity);
+  }
+  return sim.run_until(t, keep_going, every);
+}
+
+}  // namespace spreadmap::scene_file
