@@ -84,6 +84,20 @@ nlohmann::json yaml_to_json(const YAML::Node &node) {
   return s;
 }
 
+YAML::Node json_to_yaml(const nlohmann::json &value) {
+  YAML::Node node;  // null unless filled below
+  if (value.is_object())
+    for (const auto &[key, item] : value.items()) node[key] = json_to_yaml(item);
+  else if (value.is_array())
+    for (const auto &item : value) node.push_back(json_to_yaml(item));
+  else if (value.is_boolean()) node = value.get<bool>() ? "true" : "false";
+  else if (value.is_number_integer()) node = value.dump();
+  else if (value.is_number())
+    node = fmt::format("{}", value.get<double>());  // the shortest text that reads back exactly
+  else if (value.is_string()) node = value.get<std::string>();
+  return node;
+}
+
 nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, const std::string &file,
                               const std::string &key_path, Diagnostics &diag) {
   const Location at = Location::of(file, value);

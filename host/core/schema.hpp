@@ -39,6 +39,10 @@ nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, con
 
 // Plain JSON from YAML (tables): numbers become numbers, the rest strings, maps and lists as such.
 nlohmann::json yaml_to_json(const YAML::Node &node);
+// The other way, for parameters given in code (engine/plugin_law.hpp): numbers written so that they
+// read back to the same double, strings as they are ("2.5 um" keeps its unit). The nodes carry no
+// position, so messages name only the source and the key.
+YAML::Node json_to_yaml(const nlohmann::json &value);
 
 // The schema as a human table, for `spreadmap plugins NAME`.
 std::string describe_schema(const sm_plugin_v1 &p);

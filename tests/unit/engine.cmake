@@ -10,3 +10,7 @@ spreadmap_test(unit engine_kick_drift
 spreadmap_test(unit engine_thread_team
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_thread_team_test.cpp
   LIBS spreadmap_engine)
+spreadmap_test(unit engine_plugin_law
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_plugin_law_test.cpp
+  LIBS spreadmap_engine)
+add_dependencies(test_unit_engine_plugin_law plugin_contact_hooke_slider)

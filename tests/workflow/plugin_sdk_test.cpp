@@ -4,11 +4,11 @@
 // binary must also find the installed in-tree plugins without any variable. The plugin compiles with the project's
 // warnings (-Wall -Wextra, from the installed SpreadmapWarnings.cmake) and prints none.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "workflow/installed_package.hpp"
 #include "workflow/process.hpp"
 
 namespace fs = std::filesystem;
@@ -18,33 +18,22 @@ namespace {
 
 bool contains(const std::string &text, const std::string &part) { return text.find(part) != std::string::npos; }
 
-t::Outcome cmake(std::vector<std::string> args) {
-  // a clean environment for the nested build: no flags or prefixes from the outer one
-  return t::run(
-      {std::move(args), SPREADMAP_CMAKE_COMMAND, {{"CXXFLAGS", ""}, {"LDFLAGS", ""}, {"CMAKE_PREFIX_PATH", ""}}, {}});
-}
-
 }  // namespace
 
 TEST(OutOfTreePlugin, BuildsAgainstTheInstalledSdkAndLoads) {
-  const fs::path work = fs::temp_directory_path() / ("spreadmap_sdk_" + std::to_string(::getpid()));
-  const fs::path prefix = work / "prefix", build = work / "build";
-  fs::remove_all(work);
+  const auto package = t::install_package("spreadmap_sdk");
+  ASSERT_EQ(package.install.exit_code, 0) << package.install.describe();
+  const fs::path &work = package.folder, &prefix = package.prefix, build = work / "build";
+  t::expect_installed(prefix,
+                      {"bin/spreadmap", "include/spreadmap/abi.h", "include/spreadmap/contact.hpp",
+                       "lib/cmake/spreadmap/spreadmapConfig.cmake", "lib/cmake/spreadmap/spreadmapConfigVersion.cmake",
+                       "lib/cmake/spreadmap/spreadmapTargets.cmake", "lib/cmake/spreadmap/SpreadmapPlugin.cmake",
+                       "lib/cmake/spreadmap/SpreadmapWarnings.cmake", "lib/spreadmap/plugins/contact/hooke_slider.so",
+                       "lib/spreadmap/plugins/spreader/roller.so"});
 
-  const auto install = cmake({"--install", SPREADMAP_BINARY_DIR, "--prefix", prefix.string()});
-  ASSERT_EQ(install.exit_code, 0) << install.describe();
-  for (const char *f : {"bin/spreadmap", "include/spreadmap/abi.h", "include/spreadmap/contact.hpp",
-                        "lib/cmake/spreadmap/spreadmapConfig.cmake", "lib/cmake/spreadmap/spreadmapConfigVersion.cmake",
-                        "lib/cmake/spreadmap/spreadmapTargets.cmake", "lib/cmake/spreadmap/SpreadmapPlugin.cmake",
-                        "lib/cmake/spreadmap/SpreadmapWarnings.cmake", "lib/spreadmap/plugins/contact/hooke_slider.so",
-                        "lib/spreadmap/plugins/spreader/roller.so"})
-    EXPECT_TRUE(fs::exists(prefix / f)) << f << " is not installed";
-
-  const auto configure = cmake({"-S", SPREADMAP_SOURCE_DIR "/tests/plugin_sdk", "-B", build.string(),
-                                "-DCMAKE_PREFIX_PATH=" + prefix.string(), "-DCMAKE_BUILD_TYPE=Release",
-                                "-DCMAKE_CXX_COMPILER=" SPREADMAP_CXX_COMPILER});
+  const auto configure = t::configure_against(prefix, SPREADMAP_SOURCE_DIR "/tests/plugin_sdk", build);
   ASSERT_EQ(configure.exit_code, 0) << configure.describe();
-  const auto compile = cmake({"--build", build.string(), "-j", "2", "--verbose"});
+  const auto compile = t::cmake({"--build", build.string(), "-j", "2", "--verbose"});
   ASSERT_EQ(compile.exit_code, 0) << compile.describe();
   EXPECT_TRUE(contains(compile.out, " -Wall ") && contains(compile.out, " -Wextra ")) << compile.out;
   EXPECT_FALSE(contains(compile.out + compile.err, "warning:")) << compile.out << compile.err;

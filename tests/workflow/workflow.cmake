@@ -26,8 +26,13 @@ spreadmap_workflow_test(catalogue SOURCES ${CMAKE_CURRENT_LIST_DIR}/catalogue_te
 spreadmap_workflow_test(cli SOURCES ${CMAKE_CURRENT_LIST_DIR}/cli_test.cpp TIMEOUT 120)
 spreadmap_workflow_test(resume SOURCES ${CMAKE_CURRENT_LIST_DIR}/resume_test.cpp TIMEOUT 600)
 spreadmap_workflow_test(plugin_sdk SOURCES ${CMAKE_CURRENT_LIST_DIR}/plugin_sdk_test.cpp TIMEOUT 300)
-target_compile_definitions(test_workflow_plugin_sdk PRIVATE
-  SPREADMAP_CMAKE_COMMAND="${CMAKE_COMMAND}" SPREADMAP_CXX_COMPILER="${CMAKE_CXX_COMPILER}")
+# The engine as a library: examples/engine_two_spheres built against the installed package and run.
+spreadmap_workflow_test(engine_library SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_library_test.cpp TIMEOUT 300)
+# The tests that install the package and build against it (installed_package.hpp).
+foreach(t plugin_sdk engine_library)
+  target_compile_definitions(test_workflow_${t} PRIVATE
+    SPREADMAP_CMAKE_COMMAND="${CMAKE_COMMAND}" SPREADMAP_CXX_COMPILER="${CMAKE_CXX_COMPILER}")
+endforeach()
 spreadmap_workflow_test(stage_commands SOURCES ${CMAKE_CURRENT_LIST_DIR}/stage_commands_test.cpp TIMEOUT 300)
 target_link_libraries(test_workflow_stage_commands PRIVATE Eigen3::Eigen)
 if(TARGET spreadmap_render)
