@@ -17,7 +17,10 @@ CrossValidation cross_validate(const std::function<std::unique_ptr<Model>()> &ma
   CrossValidation cv;
   cv.rows = rows;
   cv.predicted.resize(yr.rows(), yr.cols());
-  for (const auto &f : folds) {
+  cv.fold.assign(rows.size(), 0);
+  for (std::size_t k = 0; k < folds.size(); ++k) {
+    const Split &f = folds[k];
+    for (auto r : f.test) cv.fold.at(r) = k;
     auto m = make();
     m->fit(xr(f.train, Eigen::all), yr(f.train, Eigen::all));
     cv.predicted(f.test, Eigen::all) = m->predict(xr(f.test, Eigen::all)).mean;

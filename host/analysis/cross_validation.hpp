@@ -16,6 +16,7 @@ namespace spreadmap::analysis {
 struct CrossValidation {
   std::vector<std::size_t> rows;  // the rows of x and y that were cross-validated, ascending
   Eigen::MatrixXd predicted;      // rows.size() x outputs: out-of-fold predictions, in `rows` order
+  std::vector<std::size_t> fold;  // the fold that predicted each of `rows`
   // [output][fold]: 100 x RMSE of the fold / range of the output over all cross-validated rows [%].
   // One range for every fold, so that folds of one row (leave-one-out) are scored too.
   std::vector<std::vector<double>> fold_nrmse;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -259,6 +260,25 @@ TEST_F(StageCommands, TrainChoosesItsValidationBySizeAndSaysWhy) {
   }
   EXPECT_EQ(j["outputs"]["rq"]["unit"], "m");
   ASSERT_FALSE(j["notes"].empty());
+  {  // cv.csv holds the out-of-fold predictions the score was computed from
+    std::ifstream cv(dir_ / "gp" / "cv.csv");
+    std::string line;
+    ASSERT_TRUE(std::getline(cv, line));
+    EXPECT_EQ(line, "case,fold,vs_true,vs_cv,rq_true,rq_cv");
+    std::vector<double> truth, predicted;
+    while (std::getline(cv, line)) {
+      std::vector<std::string> cells;
+      std::stringstream row(line);
+      for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+      ASSERT_EQ(cells.size(), 6u) << line;
+      truth.push_back(std::stod(cells[4])), predicted.push_back(std::stod(cells[5]));
+    }
+    ASSERT_EQ(truth.size(), 9u);
+    double sq = 0;
+    for (std::size_t i = 0; i < 9; ++i) sq += (truth[i] - predicted[i]) * (truth[i] - predicted[i]) / 9;
+    const double range = *std::max_element(truth.begin(), truth.end()) - *std::min_element(truth.begin(), truth.end());
+    EXPECT_NEAR(100 * std::sqrt(sq) / range, j["outputs"]["rq"]["nrmse_cv"].get<double>(), 1e-9);
+  }
   // Asked for the study's holdout on 9 rows: 7/2, and R on the 2 test rows is null, with a note.
   const auto held = train(dir_ / "nine.csv", {"--split", "holdout"});
   ASSERT_EQ(held.exit_code, 0) << held.describe();

@@ -118,9 +118,24 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
     throw InputError(
         fmt::format("error: train: split {} needs at least {} usable rows, {} has {}; use loo or fewer folds",
                     analysis::spelling(v), k, table.source(), n_cv));
+  const bool has_case = table.has_column("case");
+  const auto case_of = [&](std::size_t i) {
+    return has_case ? table.text(rows[i], table.column("case")) : std::to_string(rows[i]);
+  };
+  // cv.csv: each cross-validated row's true value and its out-of-fold prediction, by output.
+  std::vector<std::string> cv_names = {"case", "fold"};
+  for (const auto &o : rq.outputs) cv_names.push_back(o + "_true"), cv_names.push_back(o + "_cv");
+  analysis::Table cv_table(cv_names, "cv.csv");
   if (n_cv >= min_cv_rows) {
     const auto cv = analysis::cross_validate(make, x, y, split.train, analysis::k_fold(n_cv, k, rq.seed));
     analysis::score_cross_validation(report, cv, y);
+    for (std::size_t i = 0; i < cv.rows.size(); ++i) {
+      std::vector<std::string> cells = {case_of(cv.rows[i]), std::to_string(cv.fold[i])};
+      for (Eigen::Index c = 0; c < y.cols(); ++c)
+        cells.push_back(analysis::Table::format(y(Eigen::Index(cv.rows[i]), c))),
+            cells.push_back(analysis::Table::format(cv.predicted(Eigen::Index(i), c)));
+      cv_table.add_row(cells);
+    }
   } else {
     report.note(
         fmt::format("nrmse_cv is null: {} training rows; cross-validation needs at least {}", n_cv, min_cv_rows));
@@ -154,9 +169,8 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
     names.push_back("split");
     data = analysis::Table(names, "data.csv");
     const auto labels = analysis::split_labels(split, rows.size());
-    const bool has_case = table.has_column("case");
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      std::vector<std::string> cells = {has_case ? table.text(rows[i], table.column("case")) : std::to_string(rows[i])};
+      std::vector<std::string> cells = {case_of(i)};
       for (Eigen::Index c = 0; c < x.cols(); ++c) cells.push_back(analysis::Table::format(x(Eigen::Index(i), c)));
       for (Eigen::Index c = 0; c < y.cols(); ++c) cells.push_back(analysis::Table::format(y(Eigen::Index(i), c)));
       cells.push_back(labels[i]);
@@ -169,6 +183,7 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   report.write((out_dir / "report.json").string(), (out_dir / "report.csv").string());
   report.parity.write_csv((out_dir / "parity.csv").string());
   data.write_csv((out_dir / "data.csv").string());
+  cv_table.write_csv((out_dir / "cv.csv").string());
   if (figures_on) figures::parity(report, rq.outputs, out_dir / "parity.png");
   return {std::move(file), std::move(report), std::move(data)};
 }

@@ -2,7 +2,8 @@
 // holdout, cross-validated errors (nrmse_cv and its spread over the folds) always when there are
 // rows enough; shared by the train stage and `spreadmap train`. Writes, into one folder: model.json,
 // report.json, report.csv, parity.csv (true against predicted per row), data.csv (the rows used,
-// with their split) and parity.png.
+// with their split), cv.csv (each cross-validated row's out-of-fold prediction and fold) and
+// parity.png.
 #pragma once
 #include <filesystem>
 #include <map>
