@@ -172,11 +172,14 @@ def spreadmap_scores(binary, ins, outs, x, y, train):
             for k in range(len(x)):
                 w.writerow([repr(float(v)) for v in x[k]] + [repr(float(v)) for v in y[k]] +
                            ["train" if train[k] else "test"])
+        # the gp as scikit-learn's: the plain marginal likelihood, without spreadmap's noise prior
+        same_setting = {"bpnn": [], "gp": ["--param", "noise_prior_width=0"]}
         for model in ("bpnn", "gp"):
             t0 = time.perf_counter()
             run = subprocess.run([binary, "train", data, "--inputs", ",".join(ins), "--outputs", ",".join(outs),
                                   "--model", model, "--split-column", "split", "--format", "json", "--no-figures",
-                                  "--quiet", "--out", os.path.join(work, model)], capture_output=True, text=True)
+                                  "--quiet", "--out", os.path.join(work, model)] + same_setting[model],
+                                 capture_output=True, text=True)
             dt = time.perf_counter() - t0
             if run.returncode != 0:
                 print(f"spreadmap {model}: failed ({run.returncode}): {run.stderr.strip()}")

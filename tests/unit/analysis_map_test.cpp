@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "host/analysis/cross_validation.hpp"
 #include "host/analysis/grid.hpp"
 #include "host/analysis/optimum.hpp"
 #include "host/analysis/report.hpp"
@@ -111,4 +112,65 @@ TEST(AnalysisReport, ScoresEachSplitSeparately) {
   // rq on train rows (x0 = 0, 0.5): from 0.09 at (0, 0) to 1.94 at (0.5, -1) -> range 1.85.
   EXPECT_NEAR(r.outputs[1].nrmse_train, 100 * 0.01 / 1.85, 1e-12);
   EXPECT_NEAR(r.outputs[0].r_test, 1.0, 1e-15);
+}
+
+TEST(AnalysisReport, NoPearsonROnTwoRowsAndTheReportSaysWhy) {
+  const Eigen::MatrixXd x = sa::grid_points({{"U", 0, 1, 3}, {"omega", -1, 1, 3}});
+  const Eigen::MatrixXd y = Analytic().predict(x).mean;
+  const sa::Split s{{0, 1, 2, 3, 4, 5, 6}, {7, 8}};
+  const sa::Report r = sa::make_report(Analytic(), x, y, s, {"vs", "rq"});
+  EXPECT_TRUE(std::isnan(r.outputs[0].r_test));  // through 2 points R is +-1 whatever the model
+  EXPECT_NEAR(r.outputs[0].r_train, 1.0, 1e-15);
+  const auto j = r.to_json();
+  EXPECT_TRUE(j["outputs"][1]["r_test"].is_null());
+  EXPECT_EQ(j["outputs"][1]["nrmse_test"].get<double>(), 0.0);
+  ASSERT_EQ(j["notes"].size(), 1u);
+  EXPECT_NE(j["notes"][0].get<std::string>().find("r_test is null: 2 rows"), std::string::npos) << j["notes"];
+}
+
+namespace {
+// Predicts the mean of the outputs it was fitted to, everywhere: its out-of-fold errors are known.
+struct MeanModel : sa::Model {
+  Eigen::RowVectorXd mean;
+  void fit(const Eigen::MatrixXd &, const Eigen::MatrixXd &y) override { mean = y.colwise().mean(); }
+  sa::Prediction predict(const Eigen::MatrixXd &x) const override {
+    return {mean.replicate(x.rows(), 1), Eigen::MatrixXd()};
+  }
+  bool has_std() const override { return false; }
+  nlohmann::json state() const override { return {}; }
+  void load(const nlohmann::json &) override {}
+  nlohmann::json fit_info() const override { return {}; }
+};
+}  // namespace
+
+TEST(AnalysisCrossValidation, LeaveOneOutOfTheMeanIsKnownInClosedForm) {
+  // Leaving row i out, the mean of the others misses y_i by (y_i - mean) n / (n - 1): the pooled
+  // LOO RMSE is n / (n - 1) times the population standard deviation, and the out-of-fold
+  // predictions fall as y_i rises (R = -1).
+  const std::vector<double> values = {1.0, 2.0, 4.0, 7.0, 11.0, 16.0};
+  const Eigen::Index n = Eigen::Index(values.size());
+  Eigen::MatrixXd x(n, 1), y(n, 1);
+  for (Eigen::Index i = 0; i < n; ++i) x(i, 0) = double(i), y(i, 0) = values[std::size_t(i)];
+  const double mean = y.mean(), range = 15.0, k = double(n) / double(n - 1);
+  const double sd_pop = std::sqrt((y.array() - mean).square().mean());
+  std::vector<std::size_t> rows(values.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = i;
+  const auto cv = sa::cross_validate([] { return std::make_unique<MeanModel>(); }, x, y, rows,
+                                     sa::k_fold(rows.size(), rows.size(), 3));
+  for (Eigen::Index i = 0; i < n; ++i)
+    EXPECT_NEAR(cv.predicted(i, 0), (y.sum() - y(i, 0)) / double(n - 1), 1e-12) << "row " << i;
+  sa::Report r;
+  r.outputs.push_back({});
+  sa::score_cross_validation(r, cv, y);
+  EXPECT_NEAR(r.outputs[0].nrmse_cv, 100 * k * sd_pop / range, 1e-10);
+  EXPECT_NEAR(r.outputs[0].r_cv, -1.0, 1e-12);
+  // per fold: 100 |y_i - mean| k / range; their sample standard deviation
+  std::vector<double> folds;
+  for (double v : values) folds.push_back(100 * std::abs(v - mean) * k / range);
+  double fm = 0, fv = 0;
+  for (double f : folds) fm += f / double(n);
+  for (double f : folds) fv += (f - fm) * (f - fm) / double(n - 1);
+  EXPECT_NEAR(r.outputs[0].nrmse_cv_sd, std::sqrt(fv), 1e-10);
+  EXPECT_EQ(r.cv_folds, 6u);
+  EXPECT_EQ(r.cv_rows, 6u);
 }

@@ -7,6 +7,7 @@
 
 #include "host/analysis/scores.hpp"
 #include "host/analysis/split.hpp"
+#include "host/analysis/validation.hpp"
 #include "host/analysis/table.hpp"
 
 namespace sm = spreadmap;
@@ -96,4 +97,28 @@ TEST(AnalysisSplit, KFoldPartitionsAndColumnSplit) {
   EXPECT_EQ(s.test, (std::vector<std::size_t>{1}));
   EXPECT_EQ(sa::split_labels(s, 4), (std::vector<std::string>{"train", "test", "train", "train"}));
   EXPECT_THROW(sa::split_from_column(sa::Table::parse_csv("x,split\n1,tran\n", "s.csv"), "split"), std::runtime_error);
+}
+
+TEST(AnalysisValidation, ReadsEverySpellingAndChoosesBySize) {
+  using K = sa::Validation::Kind;
+  EXPECT_EQ(sa::parse_validation("holdout").kind, K::holdout);
+  EXPECT_EQ(sa::parse_validation("study").kind, K::holdout);  // the former name
+  EXPECT_EQ(sa::parse_validation("loo").kind, K::loo);
+  EXPECT_EQ(sa::parse_validation("kfold:7").folds, 7u);
+  EXPECT_EQ(sa::parse_validation("kfold", 4).folds, 4u);
+  EXPECT_EQ(sa::parse_validation("column:fold").column, "fold");
+  EXPECT_EQ(sa::parse_validation("column").column, "split");
+  for (const char *bad : {"kfold:1", "kfold:x", "kfold:", "loo:3", "holdot", "column:"})
+    EXPECT_THROW(sa::parse_validation(bad), std::invalid_argument) << bad;
+  const auto automatic = sa::parse_validation("auto");
+  EXPECT_EQ(sa::resolve_validation(automatic, 45).kind, K::holdout);  // the study's 35/10
+  EXPECT_EQ(sa::resolve_validation(automatic, 40).kind, K::holdout);
+  EXPECT_EQ(sa::resolve_validation(automatic, 39).kind, K::kfold);
+  EXPECT_EQ(sa::resolve_validation(automatic, 12).folds, 5u);
+  EXPECT_EQ(sa::resolve_validation(automatic, 11).kind, K::loo);
+  EXPECT_EQ(sa::resolve_validation(automatic, 9).kind, K::loo);
+  EXPECT_NE(sa::resolve_validation(automatic, 9).reason.find("9 usable rows"), std::string::npos);
+  EXPECT_EQ(sa::resolve_validation(sa::parse_validation("kfold:3"), 45).kind, K::kfold);  // asked: kept
+  for (const char *text : {"holdout", "loo", "kfold:3", "column:fold"})
+    EXPECT_EQ(sa::spelling(sa::parse_validation(text)), text);
 }

@@ -2,7 +2,7 @@
 if(NOT TARGET spreadmap_analysis)  # until host/CMakeLists.txt adds add_subdirectory(analysis)
   add_subdirectory(${PROJECT_SOURCE_DIR}/host/analysis ${PROJECT_BINARY_DIR}/host/analysis)
 endif()
-spreadmap_test(unit surrogate_bpnn SOURCES ${CMAKE_CURRENT_LIST_DIR}/surrogate_bpnn_test.cpp LIBS bpnn_core)
-spreadmap_test(unit surrogate_gp SOURCES ${CMAKE_CURRENT_LIST_DIR}/surrogate_gp_test.cpp LIBS gp_core)
+spreadmap_test(unit surrogate_bpnn SOURCES ${CMAKE_CURRENT_LIST_DIR}/surrogate_bpnn_test.cpp LIBS bpnn_core spreadmap_sdk)
+spreadmap_test(unit surrogate_gp SOURCES ${CMAKE_CURRENT_LIST_DIR}/surrogate_gp_test.cpp LIBS gp_core spreadmap_sdk)
 spreadmap_test(unit analysis SOURCES ${CMAKE_CURRENT_LIST_DIR}/analysis_table_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/analysis_map_test.cpp LIBS spreadmap_analysis)

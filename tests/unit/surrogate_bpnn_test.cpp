@@ -105,6 +105,37 @@ TEST(SurrogateBpnn, EarlyStoppingKeepsTheBestValidationWeights) {
   EXPECT_LT(info.validation_mse, 0.05);  // standardised outputs: below 5 % of their variance
 }
 
+TEST(SurrogateBpnn, StoppingFoldsStopBeforeTheNoiseIsLearnt) {
+  // An unregularised network on 40 noisy rows: trained to the end it follows the noise; stopped at
+  // the epoch its cross-validation folds agree on, it stays nearer the noiseless function.
+  const double sigma = 2e-6;
+  const sm::test::NoisySet s = sm::test::noisy_rq(40, sigma, 7);
+  BpnnConfig c;
+  c.units = 50, c.lambda = 0, c.epochs = 2000, c.patience = 100;
+  BpnnModel full(c);
+  const auto info_full = full.fit(s.x, s.y);
+  c.stopping_folds = 5;
+  BpnnModel stopped(c);
+  const auto info = stopped.fit(s.x, s.y);
+  ASSERT_EQ(info.fold_epochs.size(), 5u);
+  double mean = 0;
+  for (long e : info.fold_epochs) {
+    EXPECT_GE(e, 1);
+    EXPECT_LE(e, 2000);
+    mean += double(e) / 5;
+  }
+  EXPECT_LE(info.epochs, std::max(1L, std::lround(mean)));  // all rows, for the folds' mean epoch
+  EXPECT_TRUE(info.stopped_early);
+  const auto off_truth = [&](const BpnnModel &m) { return std::sqrt((m.predict(s.x) - s.truth).squaredNorm() / 40); };
+  std::printf(
+      "epochs: to the end %ld, stopped %ld (folds' best: %ld %ld %ld %ld %ld); RMSE against the noiseless "
+      "function: %.3f um to the end, %.3f um stopped (noise %.3f um)\n",
+      info_full.epochs, info.epochs, info.fold_epochs[0], info.fold_epochs[1], info.fold_epochs[2], info.fold_epochs[3],
+      info.fold_epochs[4], off_truth(full) * 1e6, off_truth(stopped) * 1e6, sigma * 1e6);
+  EXPECT_LT(info.epochs, info_full.epochs);
+  EXPECT_LT(off_truth(stopped), off_truth(full));
+}
+
 TEST(SurrogateBpnn, RejectsBadData) {
   BpnnModel m;
   Eigen::MatrixXd x = Eigen::MatrixXd::Zero(3, 2), y = Eigen::MatrixXd::Zero(2, 2);

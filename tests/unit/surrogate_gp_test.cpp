@@ -1,6 +1,10 @@
-// surrogate/gp core: likelihood gradient against finite differences, interpolation with the noise
-// at its lower bound, closed-form leave-one-out against an explicit refit, predictive std.
+// surrogate/gp core: likelihood (and posterior) gradient against finite differences, interpolation
+// with the noise at its lower bound, closed-form leave-one-out against an explicit refit, predictive
+// std, and the noise level learned from a noisy set.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
 
 #include "plugins/surrogate/gp/gp_model.hpp"
 #include "tests/unit/surrogate_study_function.hpp"
@@ -22,15 +26,25 @@ TEST(SurrogateGp, LikelihoodGradientEqualsFiniteDifferences) {
     const GpModel m(c);
     Eigen::VectorXd theta(4);
     theta << 0.3, -0.2, 0.4, std::log(1e-2);
-    Eigen::VectorXd g;
+    Eigen::VectorXd g, gp;
     m.negative_log_likelihood(theta, xs, ys, &g);
+    m.negative_log_posterior(theta, xs, ys, &gp);
     for (Eigen::Index i = 0; i < theta.size(); ++i) {
       Eigen::VectorXd a = theta, b = theta;
       a[i] += 1e-5, b[i] -= 1e-5;
       const double fd =
           (m.negative_log_likelihood(a, xs, ys, nullptr) - m.negative_log_likelihood(b, xs, ys, nullptr)) / 2e-5;
       EXPECT_NEAR(g[i], fd, 1e-6 * g.norm()) << sm::surrogate::name_of(k) << " theta " << i;
+      const double fd_post =
+          (m.negative_log_posterior(a, xs, ys, nullptr) - m.negative_log_posterior(b, xs, ys, nullptr)) / 2e-5;
+      EXPECT_NEAR(gp[i], fd_post, 1e-6 * gp.norm()) << sm::surrogate::name_of(k) << " theta " << i << " (posterior)";
     }
+    // theta's noise sits at the prior's median (1e-2), where the prior is flat: off it, it pulls back
+    Eigen::VectorXd off = theta, g_off, gp_off;
+    off[3] = std::log(1e-4);
+    m.negative_log_likelihood(off, xs, ys, &g_off);
+    m.negative_log_posterior(off, xs, ys, &gp_off);
+    EXPECT_NEAR(gp_off[3] - g_off[3], std::log(1e-4 / 1e-2) / 9.0, 1e-12) << "d/dlog n^2 of (log n^2 - log m)^2 / 2w^2";
   }
 }
 
@@ -71,8 +85,13 @@ TEST(SurrogateGp, ClosedFormLeaveOneOutEqualsExplicitRefit) {
 }
 
 TEST(SurrogateGp, StdGrowsAwayFromData) {
+  // Noiseless data and the plain marginal likelihood (no noise prior): the noise falls towards its
+  // lower bound and the latent std nearly vanishes at the data. (The default prior keeps a noise of
+  // about a tenth of the output's spread, which the latent std at a data point then reflects.)
   const Eigen::MatrixXd x = sm::test::study_grid(3, 3), y = sm::test::study_outputs(x);
-  GpModel m;
+  GpConfig c;
+  c.noise_prior_width = 0;
+  GpModel m(c);
   m.fit(x, y);
   Eigen::MatrixXd q(2, 2);
   q << 0.07, 0.0,   // a training point
@@ -80,8 +99,31 @@ TEST(SurrogateGp, StdGrowsAwayFromData) {
   Eigen::MatrixXd sd;
   m.predict(q, &sd);
   EXPECT_LT(sd(0, 1) * 100, sd(1, 1));
-  const GpModel loaded = GpModel::from_json(nlohmann::json::parse(m.to_json().dump()), GpConfig{});
+  const GpModel loaded = GpModel::from_json(nlohmann::json::parse(m.to_json().dump()), c);
   Eigen::MatrixXd sd2;
   EXPECT_TRUE((loaded.predict(q, &sd2).array() == m.predict(q).array()).all());
   EXPECT_TRUE((sd2.array() == sd.array()).all());
+}
+
+TEST(SurrogateGp, LearnsTheNoiseOfANoisySet) {
+  const double sigma = 2e-6;  // [m] 2 um on R_q ~ 100 um, the heap-to-heap scatter
+  for (auto k : {Kernel::squared_exponential, Kernel::matern52}) {
+    const sm::test::NoisySet s = sm::test::noisy_rq(40, sigma, 7);
+    GpConfig c;
+    c.kernel = k;
+    GpModel m(c);
+    m.fit(s.x, s.y);
+    const double learned = m.info()["outputs"][0]["noise_std"].get<double>();
+    const Eigen::MatrixXd p = m.predict(s.x);
+    const double range = s.y.maxCoeff() - s.y.minCoeff();
+    const double train_nrmse = 100 * std::sqrt((p - s.y).squaredNorm() / 40) / range;
+    const double truth_rmse = std::sqrt((p - s.truth).squaredNorm() / 40);
+    std::printf(
+        "%s: learned noise %.3f um (true %.3f um), train NRMSE %.2f %% (noise alone: %.2f %%), "
+        "RMSE against the noiseless function %.3f um\n",
+        sm::surrogate::name_of(k), learned * 1e6, sigma * 1e6, train_nrmse, 100 * sigma / range, truth_rmse * 1e6);
+    EXPECT_NEAR(learned, sigma, 0.3 * sigma) << sm::surrogate::name_of(k);
+    EXPECT_GT(train_nrmse, 0.5 * 100 * sigma / range) << "the GP still interpolates the noise";
+    EXPECT_LT(truth_rmse, sigma) << "the fit should sit closer to the function than the data do";
+  }
 }

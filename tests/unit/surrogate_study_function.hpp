@@ -11,7 +11,10 @@
 #pragma once
 #include <Eigen/Dense>
 
+#include <spreadmap/random.hpp>
+
 #include <cmath>
+#include <cstdint>
 
 namespace spreadmap::test {
 
@@ -39,6 +42,22 @@ inline Eigen::MatrixXd study_outputs(const Eigen::MatrixXd &x) {
   for (Eigen::Index r = 0; r < x.rows(); ++r)
     y(r, 0) = study_vs(x(r, 0), x(r, 1)), y(r, 1) = study_rq(x(r, 0), x(r, 1));
   return y;
+}
+
+// Rows of the R_q stand-in at seeded uniform (U, omega) plus Gaussian noise of known sigma [m]: the
+// situation of DEM results, whose random heaps scatter by 1-2 % between runs.
+struct NoisySet {
+  Eigen::MatrixXd x, y, truth;  // truth: the noiseless values
+};
+inline NoisySet noisy_rq(int rows, double sigma, std::uint64_t seed) {
+  Random rng(seed);
+  NoisySet s{Eigen::MatrixXd(rows, 2), Eigen::MatrixXd(rows, 1), Eigen::MatrixXd(rows, 1)};
+  for (int r = 0; r < rows; ++r) {
+    s.x(r, 0) = rng.uniform(0.04, 0.10), s.x(r, 1) = rng.uniform(-20, 20);
+    s.truth(r, 0) = study_rq(s.x(r, 0), s.x(r, 1));
+    s.y(r, 0) = s.truth(r, 0) + sigma * rng.normal();
+  }
+  return s;
 }
 
 }  // namespace spreadmap::test

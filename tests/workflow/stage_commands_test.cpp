@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -225,4 +226,76 @@ TEST_F(StageCommands, CoarseGrainingScalesSpheresCountAndContactLengths) {
   const auto c_coarse = nlohmann::json::parse(std::ifstream(coarse / "case.json"));
   EXPECT_NEAR(c_coarse["dt"].get<double>(), 2 * c_fine["dt"].get<double>(), 1e-12 * c_fine["dt"].get<double>());
   EXPECT_EQ(c_coarse["particles_start"].get<int>(), 50);
+}
+
+TEST_F(StageCommands, TrainChoosesItsValidationBySizeAndSaysWhy) {
+  const auto write = [&](const fs::path &csv, const Eigen::MatrixXd &x) {
+    const Eigen::MatrixXd y = t::study_outputs(x);
+    std::ofstream f(csv);
+    f.precision(17);
+    f << "U,omega,vs,rq\n";
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      f << x(i, 0) << "," << x(i, 1) << "," << y(i, 0) << "," << y(i, 1) << "\n";
+  };
+  const auto train = [&](const fs::path &csv, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"train", csv.string(),           "--inputs", "U,omega", "--model",     "gp",
+                                     "--out", (dir_ / "gp").string(), "--format", "json",    "--no-figures"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return spreadmap(args);
+  };
+  // 9 rows (the quickstart's 3 x 3): leave-one-out, no test rows, so no test R, and the JSON says why.
+  write(dir_ / "nine.csv", t::study_grid(3, 3));
+  const auto nine = train(dir_ / "nine.csv", {});
+  ASSERT_EQ(nine.exit_code, 0) << nine.describe();
+  const auto j = json_of(nine);
+  EXPECT_EQ(j["split"], "loo");
+  EXPECT_NE(j["split_reason"].get<std::string>().find("9 usable rows"), std::string::npos) << j.dump();
+  EXPECT_EQ(j["n_test"].get<int>(), 0);
+  EXPECT_EQ(j["cv_folds"].get<int>(), 9);
+  for (const char *o : {"vs", "rq"}) {
+    EXPECT_TRUE(j["outputs"][o]["r_test"].is_null()) << j.dump();
+    EXPECT_GT(j["outputs"][o]["nrmse_cv"].get<double>(), 0.0) << o;
+    EXPECT_GT(j["outputs"][o]["noise_std"].get<double>(), 0.0) << o;
+    EXPECT_GT(j["outputs"][o]["signal_std"].get<double>(), j["outputs"][o]["noise_std"].get<double>()) << o;
+  }
+  EXPECT_EQ(j["outputs"]["rq"]["unit"], "m");
+  ASSERT_FALSE(j["notes"].empty());
+  {  // cv.csv holds the out-of-fold predictions the score was computed from
+    std::ifstream cv(dir_ / "gp" / "cv.csv");
+    std::string line;
+    ASSERT_TRUE(std::getline(cv, line));
+    EXPECT_EQ(line, "case,fold,vs_true,vs_cv,rq_true,rq_cv");
+    std::vector<double> truth, predicted;
+    while (std::getline(cv, line)) {
+      std::vector<std::string> cells;
+      std::stringstream row(line);
+      for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+      ASSERT_EQ(cells.size(), 6u) << line;
+      truth.push_back(std::stod(cells[4])), predicted.push_back(std::stod(cells[5]));
+    }
+    ASSERT_EQ(truth.size(), 9u);
+    double sq = 0;
+    for (std::size_t i = 0; i < 9; ++i) sq += (truth[i] - predicted[i]) * (truth[i] - predicted[i]) / 9;
+    const double range = *std::max_element(truth.begin(), truth.end()) - *std::min_element(truth.begin(), truth.end());
+    EXPECT_NEAR(100 * std::sqrt(sq) / range, j["outputs"]["rq"]["nrmse_cv"].get<double>(), 1e-9);
+  }
+  // Asked for the study's holdout on 9 rows: 7/2, and R on the 2 test rows is null, with a note.
+  const auto held = train(dir_ / "nine.csv", {"--split", "holdout"});
+  ASSERT_EQ(held.exit_code, 0) << held.describe();
+  const auto h = json_of(held);
+  EXPECT_EQ(h["n_test"].get<int>(), 2);
+  EXPECT_TRUE(h["outputs"]["vs"]["r_test"].is_null()) << h.dump();
+  EXPECT_TRUE(h["outputs"]["vs"]["nrmse_test"].is_number()) << h.dump();
+  EXPECT_NE(h["notes"].dump().find("r_test is null: 2 rows"), std::string::npos) << h.dump();
+  // 20 rows: 5-fold; kfold:K beyond the rows and an unknown split are refused with the forms allowed.
+  write(dir_ / "twenty.csv", t::study_grid(4, 5));
+  const auto twenty = train(dir_ / "twenty.csv", {});
+  ASSERT_EQ(twenty.exit_code, 0) << twenty.describe();
+  EXPECT_EQ(json_of(twenty)["split"], "kfold:5");
+  const auto too_many = train(dir_ / "nine.csv", {"--split", "kfold:10"});
+  EXPECT_EQ(too_many.exit_code, 2) << too_many.describe();
+  EXPECT_NE(too_many.err.find("kfold:10 needs at least 10 usable rows"), std::string::npos) << too_many.err;
+  const auto bad = train(dir_ / "nine.csv", {"--split", "kfolds"});
+  EXPECT_EQ(bad.exit_code, 2) << bad.describe();
+  EXPECT_NE(bad.err.find("kfold:K, loo or column:NAME"), std::string::npos) << bad.err;
 }

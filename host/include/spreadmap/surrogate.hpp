@@ -19,7 +19,9 @@ typedef struct sm_surrogate_ops_v1 {
   // JSON text of the fitted state (weights or hyperparameters, normalisation); valid until the next call.
   const char *(*save)(void *self);
   int (*load)(void *self, const char *state_json, sm_error *err);  // 0 on success
-  // JSON text with facts about the last fit (final loss, epochs, hyperparameters).
+  // JSON text with facts about the last fit (final loss, epochs, hyperparameters). A model that fits
+  // scales per output gives them as {"outputs": [{"signal_std": s, "noise_std": n}, ...]} in the
+  // output's units; the host's train report shows them.
   const char *(*fit_info)(void *self);
 } sm_surrogate_ops_v1;
 }

@@ -1,13 +1,15 @@
 // spreadmap train TABLE.csv --inputs U,omega --outputs vs,rq --model bpnn|gp [--out DIR]
-//                [--split study|kfold|column] [--split-column NAME] [--folds K] [--seed N]
+//                [--split auto|holdout|kfold:K|loo|column:NAME] [--split-column NAME] [--folds K] [--seed N]
 //                [--param KEY=VALUE ...] [--format table|json]
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 
 #include "core/error.hpp"
 #include "workflow/command_line.hpp"
 #include "workflow/commands.hpp"
+#include "workflow/map/mapping.hpp"
 #include "workflow/train/training.hpp"
 
 namespace spreadmap {
@@ -28,7 +30,8 @@ std::vector<std::string> split_list(const std::string &text) {
 int cmd_train(int argc, char **argv) {
   namespace po = boost::program_options;
   po::options_description d("train options");
-  std::string table, inputs, outputs = "vs,rq", out, format = "table", split_column;
+  std::string table, inputs, outputs = "vs,rq", out, format = "table", split = "auto", split_column;
+  std::size_t folds = 5;
   std::vector<std::string> params;
   TrainRequest rq;
   cli::Common c;
@@ -37,9 +40,11 @@ int cmd_train(int argc, char **argv) {
       "outputs", po::value(&outputs)->default_value("vs,rq"), "output columns, comma-separated")(
       "model", po::value(&rq.model)->default_value("bpnn"), "surrogate plugin: bpnn | gp | ...")(
       "out", po::value(&out), "folder for model.json and the report (default train_<model> beside the table)")(
-      "split", po::value(&rq.split)->default_value("study"), "study (35/10 share) | kfold | column")(
-      "split-column", po::value(&split_column), "a column of train/test labels (implies --split column)")(
-      "folds", po::value(&rq.folds)->default_value(5), "folds for --split kfold")(
+      "split", po::value(&split)->default_value("auto"),
+      "auto (by size: holdout from 40 rows, kfold:5 from 12, loo below) | holdout (the study's 35/10) | kfold:K | "
+      "loo | column:NAME")("split-column", po::value(&split_column),
+                           "a column of train/test labels (= --split column:NAME)")(
+      "folds", po::value(&folds)->default_value(5), "K of a plain --split kfold")(
       "seed", po::value(&rq.seed)->default_value(1), "seed of the split")(
       "param", po::value(&params)->multitoken(), "surrogate parameter KEY=VALUE (see spreadmap plugins MODEL)")(
       "no-figures", "do not render parity.png")("format", po::value(&format)->default_value("table"), "table | json");
@@ -49,14 +54,16 @@ int cmd_train(int argc, char **argv) {
   po::variables_map vm;
   if (!cli::parse(argc, argv, d, p, vm,
                   "train TABLE.csv --inputs U,omega [--outputs vs,rq] [--model bpnn|gp] [--out DIR] [--split "
-                  "study|kfold|column] "
+                  "auto|holdout|kfold:K|loo|column:NAME] "
                   "[--split-column NAME] [--param KEY=VALUE ...] [--format table|json]"))
     return 0;
   c.apply();
   if (format != "table" && format != "json") throw InputError("error: --format " + format + ": use table or json");
-  if (!split_column.empty()) {
-    rq.split = "column";
-    rq.split_column = split_column;
+  if (!split_column.empty()) split = "column:" + split_column;
+  try {
+    rq.validation = analysis::parse_validation(split, folds);
+  } catch (const std::exception &e) {
+    throw InputError(std::string("error: --split ") + e.what());
   }
   rq.inputs = split_list(inputs);
   rq.outputs = split_list(outputs);
@@ -77,26 +84,43 @@ int cmd_train(int argc, char **argv) {
   const fs::path dir = out.empty() ? fs::path(table).parent_path() / ("train_" + rq.model) : fs::path(out);
   const auto result = train_surrogate(registry, t, rq, dir, !vm.count("no-figures"));
 
+  const auto &report = result.report;
   if (format == "json") {
     nlohmann::json j = nlohmann::json::object();
-    for (const auto &o : result.report.outputs)
-      j[o.name] = {
-          {"nrmse_train", o.nrmse_train}, {"nrmse_test", o.nrmse_test}, {"r_train", o.r_train}, {"r_test", o.r_test}};
+    const nlohmann::json scores = report.to_json();
+    for (const auto &o : scores["outputs"]) j[o["name"].get<std::string>()] = o;
     std::cout << nlohmann::json({{"model", "surrogate/" + rq.model},
-                                 {"n_train", result.report.n_train},
-                                 {"n_test", result.report.n_test},
+                                 {"split", report.split},
+                                 {"split_reason", report.split_reason},
+                                 {"n_train", report.n_train},
+                                 {"n_test", report.n_test},
+                                 {"cv_rows", report.cv_rows},
+                                 {"cv_folds", report.cv_folds},
                                  {"outputs", j},
+                                 {"notes", report.notes},
                                  {"model_file", (dir / "model.json").string()}})
                      .dump(2)
               << "\n";
   } else {
-    std::cout << fmt::format("surrogate/{} on {} ({} train, {} test rows, split {}): {}\n", rq.model, table,
-                             result.report.n_train, result.report.n_test, rq.split, (dir / "model.json").string());
-    std::cout << fmt::format("  {:<12} {:>14} {:>14} {:>10} {:>10}\n", "output", "NRMSE train %", "NRMSE test %",
-                             "R train", "R test");
-    for (const auto &o : result.report.outputs)
-      std::cout << fmt::format("  {:<12} {:>14.3f} {:>14.3f} {:>10.4f} {:>10.4f}\n", o.name, o.nrmse_train,
-                               o.nrmse_test, o.r_train, o.r_test);
+    std::cout << fmt::format("surrogate/{} on {} ({} train, {} test rows; split {}: {}): {}\n", rq.model, table,
+                             report.n_train, report.n_test, report.split, report.split_reason,
+                             (dir / "model.json").string());
+    const auto cell = [](double v, int digits) { return std::isfinite(v) ? fmt::format("{:.{}f}", v, digits) : "-"; };
+    std::cout << fmt::format("  {:<12} {:>14} {:>14} {:>16} {:>8} {:>8} {:>8}\n", "output", "NRMSE train %",
+                             "NRMSE test %", "NRMSE cv %", "R train", "R test", "R cv");
+    for (const auto &o : report.outputs) {
+      const std::string cv = std::isfinite(o.nrmse_cv) ? cell(o.nrmse_cv, 3) + " +- " + cell(o.nrmse_cv_sd, 3) : "-";
+      std::cout << fmt::format("  {:<12} {:>14} {:>14} {:>16} {:>8} {:>8} {:>8}\n", o.name, cell(o.nrmse_train, 3),
+                               cell(o.nrmse_test, 3), cv, cell(o.r_train, 4), cell(o.r_test, 4), cell(o.r_cv, 4));
+    }
+    for (const auto &o : report.outputs)
+      if (std::isfinite(o.noise_std))
+        std::cout << fmt::format("  {}: noise {}, signal {} (fitted)\n", o.name, display(o.noise_std, o.unit),
+                                 display(o.signal_std, o.unit));
+    if (report.cv_folds)
+      std::cout << fmt::format("  NRMSE cv: {} folds of {} rows, +- the standard deviation over the folds\n",
+                               report.cv_folds, report.cv_rows);
+    for (const auto &n : report.notes) std::cout << "  note: " << n << "\n";
   }
   return 0;
 }

@@ -47,17 +47,21 @@ TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, Plugi
   }
   if (cfg["inputs"]) c.inputs = names(cfg["inputs"]);
   if (cfg["outputs"]) c.outputs = names(cfg["outputs"]);
-  if (cfg["split"]) {
-    c.split = cfg["split"].as<std::string>();
-    if (c.split != "study" && c.split != "kfold" && c.split != "column")
-      diag.error(Location::of(file, cfg["split"]), "train.split", "'" + c.split + "' is not a split",
-                 "use study (the study's 35/10 share), kfold or column (a `split` column of train/test)");
-  }
   try {
     if (cfg["folds"]) c.folds = cfg["folds"].as<std::size_t>();
     if (cfg["seed"]) c.seed = cfg["seed"].as<std::uint64_t>();
   } catch (const YAML::Exception &) {
     diag.error(Location::of(file, cfg), "train", "folds and seed must be whole numbers");
+  }
+  if (cfg["split"]) {
+    try {
+      if (!cfg["split"].IsScalar()) throw std::invalid_argument("a split is one word, e.g. loo or kfold:5");
+      c.validation = analysis::parse_validation(cfg["split"].as<std::string>(), c.folds);
+    } catch (const std::exception &e) {
+      diag.error(Location::of(file, cfg["split"]), "train.split", e.what(),
+                 "auto (the default) chooses by size: holdout from " + std::to_string(analysis::holdout_from_rows) +
+                     " cases, 5-fold from " + std::to_string(analysis::loo_below_rows) + ", leave-one-out below");
+    }
   }
   c.style = figures::read_style(cfg["render"], true, false, file, "train.render", diag);
   c.render = c.style.on;

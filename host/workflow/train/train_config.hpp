@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/diagnostics.hpp"
+#include "analysis/validation.hpp"
 #include "core/registry.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/workflow.hpp"
@@ -17,15 +18,16 @@ struct TrainConfig {
   std::vector<std::pair<std::string, nlohmann::json>> models;  // name, validated parameters
   std::vector<std::string> inputs;                             // empty = the design's variables
   std::vector<std::string> outputs = {"vs", "rq"};
-  std::string split = "study";
-  std::size_t folds = 5;
+  analysis::Validation validation;  // split: auto unless given
+  std::size_t folds = 5;            // K of a plain `split: kfold`
   std::uint64_t seed = 1;
   bool render = true;
   figures::Style style;  // render: true | false | {width, vector}
 };
 
 // model: bpnn | [bpnn, gp]; params: {...} (one model) or params: {bpnn: {...}, gp: {...}};
-// inputs, outputs: lists of column names; split: study | kfold | column; folds; seed; render.
+// inputs, outputs: lists of column names; split: auto | holdout | kfold:K | loo | column:NAME (see
+// analysis/validation.hpp); folds (K of a plain `kfold`); seed; render.
 TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, PluginRegistry &registry, Diagnostics &diag);
 
 }  // namespace spreadmap

@@ -1,9 +1,11 @@
 #include "workflow/train/training.hpp"
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <cmath>
 
+#include "analysis/cross_validation.hpp"
 #include "analysis/plugin_model.hpp"
 #include "analysis/scores.hpp"
 #include "analysis/split.hpp"
@@ -12,6 +14,7 @@
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 #include "workflow/figures/stage_figures.hpp"
+#include "workflow/map/mapping.hpp"
 
 namespace spreadmap {
 
@@ -42,6 +45,38 @@ analysis::Variable variable(const std::string &name, const Eigen::VectorXd &v,
   return {name, "", v.minCoeff(), v.maxCoeff()};
 }
 
+using analysis::Split;
+
+// Fewest training rows that are cross-validated (folds of 1-2 rows fitted on 2-3 rows below that).
+constexpr std::size_t min_cv_rows = 4;
+
+// The rows (indices into `rows`) fitted and tested under v; cross-validation leaves no test rows.
+Split split_rows(const analysis::Table &table, const std::vector<std::size_t> &rows, const analysis::Validation &v,
+                 std::uint64_t seed) {
+  Split split;
+  if (v.kind == analysis::Validation::Kind::holdout) return analysis::study_split(rows.size(), seed);
+  if (v.kind == analysis::Validation::Kind::column) {
+    const Split all = analysis::split_from_column(table, v.column);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (std::binary_search(all.train.begin(), all.train.end(), rows[i])) split.train.push_back(i);
+      if (std::binary_search(all.test.begin(), all.test.end(), rows[i])) split.test.push_back(i);
+    }
+    return split;
+  }
+  for (std::size_t i = 0; i < rows.size(); ++i) split.train.push_back(i);
+  return split;
+}
+
+// The model's fitted signal and noise standard deviations of output o, when its fit_info() gives
+// them as "outputs": [{"signal_std", "noise_std"}, ...] in the output's units (surrogate/gp does).
+void add_scales(analysis::OutputScores &s, const nlohmann::json &fit, std::size_t o, const std::string &unit) {
+  s.unit = unit;
+  if (!fit.contains("outputs") || !fit["outputs"].is_array() || fit["outputs"].size() <= o) return;
+  const auto &j = fit["outputs"][o];
+  if (j.contains("signal_std") && j["signal_std"].is_number()) s.signal_std = j["signal_std"].get<double>();
+  if (j.contains("noise_std") && j["noise_std"].is_number()) s.noise_std = j["noise_std"].get<double>();
+}
+
 }  // namespace
 
 TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &table, const TrainRequest &rq,
@@ -63,42 +98,51 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   const LoadedPlugin &plugin = registry.get("surrogate", rq.model);
   auto make = [&] { return analysis::PluginModel::create(plugin.descriptor, rq.params.dump()); };
 
-  analysis::Split split;
-  std::vector<analysis::Split> folds;
-  if (rq.split == "study") {
-    split = analysis::study_split(rows.size(), rq.seed);
-  } else if (rq.split == "column") {
-    const analysis::Split all = analysis::split_from_column(table, rq.split_column);
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      if (std::binary_search(all.train.begin(), all.train.end(), rows[i])) split.train.push_back(i);
-      if (std::binary_search(all.test.begin(), all.test.end(), rows[i])) split.test.push_back(i);
-    }
-  } else if (rq.split == "kfold") {
-    folds = analysis::k_fold(rows.size(), rq.folds, rq.seed);
-    for (std::size_t i = 0; i < rows.size(); ++i) split.train.push_back(i);
-  } else {
-    throw InputError("error: train: split '" + rq.split + "' is not one of study, kfold, column");
-  }
+  const analysis::Validation v = analysis::resolve_validation(rq.validation, rows.size());
+  spdlog::info("train {}: split {}: {} ({})", rq.model, analysis::spelling(v), analysis::describe(v), v.reason);
+  const Split split = split_rows(table, rows, v, rq.seed);
   if (split.train.size() < 2) throw InputError("error: train: fewer than 2 training rows in " + table.source());
 
   auto model = make();
   model->fit(x(split.train, Eigen::all), y(split.train, Eigen::all));
   analysis::Report report = analysis::make_report(*model, x, y, split, rq.outputs);
+  report.split = analysis::spelling(v), report.split_reason = v.reason;
 
-  if (!folds.empty()) {
-    // Out-of-fold predictions: each row predicted by the model that did not see it.
-    Eigen::MatrixXd oof(y.rows(), y.cols());
-    for (const auto &f : folds) {
-      auto m = make();
-      m->fit(x(f.train, Eigen::all), y(f.train, Eigen::all));
-      oof(f.test, Eigen::all) = m->predict(x(f.test, Eigen::all)).mean;
+  // Cross-validation over the training rows: all rows under kfold and loo, the training share of a
+  // holdout (5 folds) beside its test scores. Each fold gets a fresh model fitted without it.
+  const std::size_t n_cv = split.train.size();
+  const std::size_t k = v.kind == analysis::Validation::Kind::loo     ? n_cv
+                        : v.kind == analysis::Validation::Kind::kfold ? v.folds
+                                                                      : std::min<std::size_t>(5, n_cv);
+  if (k > n_cv)
+    throw InputError(
+        fmt::format("error: train: split {} needs at least {} usable rows, {} has {}; use loo or fewer folds",
+                    analysis::spelling(v), k, table.source(), n_cv));
+  const bool has_case = table.has_column("case");
+  const auto case_of = [&](std::size_t i) {
+    return has_case ? table.text(rows[i], table.column("case")) : std::to_string(rows[i]);
+  };
+  // cv.csv: each cross-validated row's true value and its out-of-fold prediction, by output.
+  std::vector<std::string> cv_names = {"case", "fold"};
+  for (const auto &o : rq.outputs) cv_names.push_back(o + "_true"), cv_names.push_back(o + "_cv");
+  analysis::Table cv_table(cv_names, "cv.csv");
+  if (n_cv >= min_cv_rows) {
+    const auto cv = analysis::cross_validate(make, x, y, split.train, analysis::k_fold(n_cv, k, rq.seed));
+    analysis::score_cross_validation(report, cv, y);
+    for (std::size_t i = 0; i < cv.rows.size(); ++i) {
+      std::vector<std::string> cells = {case_of(cv.rows[i]), std::to_string(cv.fold[i])};
+      for (Eigen::Index c = 0; c < y.cols(); ++c)
+        cells.push_back(analysis::Table::format(y(Eigen::Index(cv.rows[i]), c))),
+            cells.push_back(analysis::Table::format(cv.predicted(Eigen::Index(i), c)));
+      cv_table.add_row(cells);
     }
-    for (Eigen::Index o = 0; o < y.cols(); ++o) {
-      report.outputs[o].nrmse_test = analysis::nrmse_percent(y.col(o), oof.col(o));
-      report.outputs[o].r_test = analysis::pearson(y.col(o), oof.col(o));
-    }
-    report.n_test = rows.size();
+  } else {
+    report.note(
+        fmt::format("nrmse_cv is null: {} training rows; cross-validation needs at least {}", n_cv, min_cv_rows));
   }
+  if (split.test.empty())
+    report.note("nrmse_test and r_test are null: " + analysis::describe(v) +
+                " holds no rows out for testing; nrmse_cv is the error to expect on new cases");
 
   analysis::ModelFile file;
   file.plugin = "surrogate/" + rq.model;
@@ -106,14 +150,16 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   file.params = rq.params;
   for (Eigen::Index i = 0; i < x.cols(); ++i) file.inputs.push_back(variable(rq.inputs[i], x.col(i), rq.units));
   for (Eigen::Index i = 0; i < y.cols(); ++i) file.outputs.push_back(variable(rq.outputs[i], y.col(i), rq.units));
+  const nlohmann::json fit = model->fit_info();
+  for (std::size_t o = 0; o < report.outputs.size(); ++o) add_scales(report.outputs[o], fit, o, file.outputs[o].unit);
   file.state = model->state();
   file.training = {{"source", table.source()},
                    {"rows", rows.size()},
-                   {"split", rq.split},
+                   {"split", report.split},
                    {"seed", rq.seed},
-                   {"folds", folds.empty() ? 0 : rq.folds},
+                   {"folds", report.cv_folds},
                    {"report", report.to_json()},
-                   {"fit", model->fit_info()}};
+                   {"fit", fit}};
 
   analysis::Table data(std::vector<std::string>{"case"}, "data.csv");
   {
@@ -122,10 +168,9 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
     names.insert(names.end(), rq.outputs.begin(), rq.outputs.end());
     names.push_back("split");
     data = analysis::Table(names, "data.csv");
-    const auto labels = analysis::split_labels(folds.empty() ? split : analysis::Split{split.train, {}}, rows.size());
-    const bool has_case = table.has_column("case");
+    const auto labels = analysis::split_labels(split, rows.size());
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      std::vector<std::string> cells = {has_case ? table.text(rows[i], table.column("case")) : std::to_string(rows[i])};
+      std::vector<std::string> cells = {case_of(i)};
       for (Eigen::Index c = 0; c < x.cols(); ++c) cells.push_back(analysis::Table::format(x(Eigen::Index(i), c)));
       for (Eigen::Index c = 0; c < y.cols(); ++c) cells.push_back(analysis::Table::format(y(Eigen::Index(i), c)));
       cells.push_back(labels[i]);
@@ -138,8 +183,27 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   report.write((out_dir / "report.json").string(), (out_dir / "report.csv").string());
   report.parity.write_csv((out_dir / "parity.csv").string());
   data.write_csv((out_dir / "data.csv").string());
+  cv_table.write_csv((out_dir / "cv.csv").string());
   if (figures_on) figures::parity(report, rq.outputs, out_dir / "parity.png");
   return {std::move(file), std::move(report), std::move(data)};
+}
+
+std::string score_line(const analysis::Report &report, const analysis::OutputScores &o) {
+  const auto known = [](double v) { return std::isfinite(v); };
+  std::vector<std::string> errors, r;
+  if (known(o.nrmse_cv))
+    errors.push_back(fmt::format("cv {:.2f} +- {:.2f} % ({} folds of {} rows)", o.nrmse_cv, o.nrmse_cv_sd,
+                                 report.cv_folds, report.cv_rows));
+  if (known(o.nrmse_train)) errors.push_back(fmt::format("train {:.2f} %", o.nrmse_train));
+  if (known(o.nrmse_test)) errors.push_back(fmt::format("test {:.2f} % ({} rows)", o.nrmse_test, report.n_test));
+  if (known(o.r_cv)) r.push_back(fmt::format("cv {:.4f}", o.r_cv));
+  if (known(o.r_train)) r.push_back(fmt::format("train {:.4f}", o.r_train));
+  if (known(o.r_test)) r.push_back(fmt::format("test {:.4f}", o.r_test));
+  std::string line = "NRMSE " + join(errors);
+  if (!r.empty()) line += "; R " + join(r);
+  if (known(o.noise_std) && known(o.signal_std))
+    line += "; noise " + display(o.noise_std, o.unit) + ", signal " + display(o.signal_std, o.unit);
+  return line;
 }
 
 nlohmann::json surrogate_params(PluginRegistry &registry, const std::string &model,

@@ -37,6 +37,9 @@ struct Bpnn {
       sm::integer("epochs", 1, 1e9, 3000, "full-batch epochs (lbfgs: iterations; converges in < 1 s on 45 points)"),
       sm::number("validation_share", "-", 0, 0.5, 0, "share of training rows held out for early stopping (0 = none)"),
       sm::integer("patience", 1, 1e9, 200, "epochs without validation improvement before stopping"),
+      sm::integer("stopping_folds", 0, 50, 0,
+                  "early stopping by K-fold cross-validation of the training rows (0 = none): each fold's best "
+                  "epoch on its held-out rows, then all rows for their mean"),
       sm::integer("seed", 0, 4294967295.0, 1, "seed of the initial weights and the validation split"),
       sm::number("tolerance", "-", 0, 1, 1e-10, "lbfgs stops when the loss changes by less than this (relative)"),
   };
@@ -57,6 +60,10 @@ struct Bpnn {
     c.epochs = v.integer("epochs");
     c.validation_share = v["validation_share"];
     c.patience = v.integer("patience");
+    c.stopping_folds = v.integer("stopping_folds");
+    if (c.stopping_folds == 1) throw sm::ParamError("stopping_folds = 1: give 0 (no stopping folds) or at least 2");
+    if (c.stopping_folds > 0 && c.validation_share > 0)
+      throw sm::ParamError("stopping_folds and validation_share both ask for early stopping; give one of them");
     c.seed = std::uint64_t(v.integer("seed"));
     c.tolerance = v["tolerance"];
     if (c.regularisation == ss::Regularisation::ratio && c.lambda > 1)

@@ -41,6 +41,7 @@ const char *name_of(Regularisation r) { return r == Regularisation::ratio ? "rat
 nlohmann::json BpnnFitInfo::to_json() const {
   nlohmann::json j = {{"loss", loss}, {"mse", mse}, {"epochs", epochs}, {"stopped_early", stopped_early}};
   if (validation_mse >= 0) j["validation_mse"] = validation_mse;
+  if (!fold_epochs.empty()) j["fold_epochs"] = fold_epochs;
   return j;
 }
 
@@ -194,59 +195,42 @@ MatrixXd BpnnModel::forward(const MatrixXd &xs) const {
   return a.transpose();
 }
 
-BpnnFitInfo BpnnModel::fit(const MatrixXd &x, const MatrixXd &y) {
-  check_data(x, y);
-  x_scale_ = Standardiser::fit(x);
-  y_scale_ = Standardiser::fit(y);
-  const MatrixXd xs_all = x_scale_.forward(x), ys_all = y_scale_.forward(y);
-
-  // Hold out a seeded validation share for early stopping.
-  std::vector<Eigen::Index> order(std::size_t(x.rows()));
-  std::iota(order.begin(), order.end(), Eigen::Index(0));
-  long n_val = 0;
-  if (config_.validation_share > 0) {
-    n_val = std::max(1L, std::lround(config_.validation_share * double(x.rows())));
-    if (x.rows() - n_val < 2) throw std::invalid_argument("bpnn: validation_share leaves fewer than 2 training rows");
-    Random shuffle(config_.seed ^ 0x9e3779b97f4a7c15ULL);
-    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[shuffle.below(i)]);
-  }
-  const std::vector<Eigen::Index> val(order.begin(), order.begin() + n_val), tr(order.begin() + n_val, order.end());
-  const MatrixXd xs = rows_of(xs_all, tr), ys = rows_of(ys_all, tr);
-  const MatrixXd xv = rows_of(xs_all, val), yv = rows_of(ys_all, val);
-
-  initialise(int(x.cols()), int(y.cols()));
-  VectorXd p = parameters(), best_p = p;
-  info_ = {};
-  double best_val = std::numeric_limits<double>::infinity();
+BpnnModel::Run BpnnModel::train(const MatrixXd &xs, const MatrixXd &ys, const MatrixXd &xv, const MatrixXd &yv,
+                                long max_epochs) {
+  initialise(int(xs.cols()), int(ys.cols()));
+  Run run;
+  run.p = parameters();
+  VectorXd best_p = run.p;
+  const bool validate = xv.rows() > 0;
   long since_best = 0;
   // Returns false when early stopping says to stop.
-  auto watch = [&](const VectorXd &q) {
-    if (n_val == 0) return true;
+  auto watch = [&](const VectorXd &q, long epoch) {
+    if (!validate) return true;
     double v = 0;
     loss(q, xv, yv, nullptr, &v);
-    if (v < best_val) best_val = v, best_p = q, since_best = 0;
+    if (v < run.validation_mse) run.validation_mse = v, best_p = q, run.best_epoch = epoch, since_best = 0;
     else if (++since_best >= config_.patience) return false;
     return true;
   };
 
-  VectorXd g(p.size());
   if (config_.optimiser == Optimiser::lbfgs) {
     LbfgsOptions o;
-    o.max_iterations = config_.epochs;
+    o.max_iterations = max_epochs;
     o.relative_tolerance = config_.tolerance;
     o.gradient_tolerance = 1e-12;
     const auto objective = [&](const VectorXd &q, VectorXd &gq) { return loss(q, xs, ys, &gq); };
-    const LbfgsResult r = lbfgs_minimise(objective, p, o, [&](long, const VectorXd &q, double) {
-      const bool go_on = watch(q);
-      info_.stopped_early = !go_on;
+    const LbfgsResult r = lbfgs_minimise(objective, run.p, o, [&](long epoch, const VectorXd &q, double) {
+      const bool go_on = watch(q, epoch);
+      run.stopped_early = !go_on;
       return go_on;
     });
-    info_.epochs = r.iterations;
+    run.epochs = r.iterations;
   } else {
-    VectorXd m = VectorXd::Zero(p.size()), v = VectorXd::Zero(p.size());
+    VectorXd g(run.p.size()), m = VectorXd::Zero(run.p.size()), v = VectorXd::Zero(run.p.size());
     const double b1 = 0.9, b2 = 0.999;
     double b1t = 1, b2t = 1;
-    for (info_.epochs = 0; info_.epochs < config_.epochs;) {
+    VectorXd &p = run.p;
+    for (run.epochs = 0; run.epochs < max_epochs;) {
       loss(p, xs, ys, &g);
       if (config_.optimiser == Optimiser::gd) {
         p -= config_.learning_rate * g;
@@ -256,17 +240,68 @@ BpnnFitInfo BpnnModel::fit(const MatrixXd &x, const MatrixXd &y) {
         b1t *= b1, b2t *= b2;
         p.array() -= config_.learning_rate * (m.array() / (1 - b1t)) / ((v.array() / (1 - b2t)).sqrt() + 1e-8);
       }
-      ++info_.epochs;
+      ++run.epochs;
       if (!p.allFinite()) throw std::runtime_error("bpnn: training diverged (non-finite weights); lower learning_rate");
-      if (!watch(p)) {
-        info_.stopped_early = true;
+      if (!watch(p, run.epochs)) {
+        run.stopped_early = true;
         break;
       }
     }
   }
-  if (n_val > 0) p = best_p, info_.validation_mse = best_val;
-  set_parameters(p);
-  info_.loss = loss(p, xs, ys, nullptr, &info_.mse);
+  if (validate) run.p = best_p;
+  return run;
+}
+
+BpnnFitInfo BpnnModel::fit(const MatrixXd &x, const MatrixXd &y) {
+  check_data(x, y);
+  x_scale_ = Standardiser::fit(x);
+  y_scale_ = Standardiser::fit(y);
+  const MatrixXd xs_all = x_scale_.forward(x), ys_all = y_scale_.forward(y);
+
+  // A seeded order of the rows for the validation share or the stopping folds.
+  std::vector<Eigen::Index> order(std::size_t(x.rows()));
+  std::iota(order.begin(), order.end(), Eigen::Index(0));
+  if (config_.validation_share > 0 || config_.stopping_folds > 0) {
+    Random shuffle(config_.seed ^ 0x9e3779b97f4a7c15ULL);
+    for (std::size_t i = order.size(); i > 1; --i) std::swap(order[i - 1], order[shuffle.below(i)]);
+  }
+  info_ = {};
+  if (config_.stopping_folds >= 2) {
+    // Early stopping by cross-validation: each fold trains on the others and keeps the epoch of its
+    // lowest validation error; the network is then trained on every row for the mean of those epochs.
+    const auto k = std::size_t(config_.stopping_folds);
+    if (k > order.size() || order.size() - (order.size() + k - 1) / k < 2)
+      throw std::invalid_argument("bpnn: stopping_folds = " + std::to_string(k) + " with " +
+                                  std::to_string(order.size()) + " rows leaves a fold fewer than 2 training rows");
+    double epochs_sum = 0, validation_sum = 0;
+    for (std::size_t f = 0; f < k; ++f) {
+      std::vector<Eigen::Index> val, tr;
+      for (std::size_t i = 0; i < order.size(); ++i) (i % k == f ? val : tr).push_back(order[i]);
+      const Run r =
+          train(rows_of(xs_all, tr), rows_of(ys_all, tr), rows_of(xs_all, val), rows_of(ys_all, val), config_.epochs);
+      info_.fold_epochs.push_back(r.best_epoch);
+      epochs_sum += double(r.best_epoch), validation_sum += r.validation_mse;
+    }
+    const Run all = train(xs_all, ys_all, MatrixXd(), MatrixXd(), std::max(1L, std::lround(epochs_sum / double(k))));
+    set_parameters(all.p);
+    info_.epochs = all.epochs, info_.stopped_early = true, info_.validation_mse = validation_sum / double(k);
+    info_.loss = loss(all.p, xs_all, ys_all, nullptr, &info_.mse);
+    return info_;
+  }
+
+  // Hold out a seeded validation share for early stopping.
+  long n_val = 0;
+  if (config_.validation_share > 0) {
+    n_val = std::max(1L, std::lround(config_.validation_share * double(x.rows())));
+    if (x.rows() - n_val < 2) throw std::invalid_argument("bpnn: validation_share leaves fewer than 2 training rows");
+  }
+  const std::vector<Eigen::Index> val(order.begin(), order.begin() + n_val), tr(order.begin() + n_val, order.end());
+  const MatrixXd xs = rows_of(xs_all, tr), ys = rows_of(ys_all, tr);
+  const Run r = train(xs, ys, rows_of(xs_all, val), rows_of(ys_all, val), config_.epochs);
+  set_parameters(r.p);
+  info_.epochs = r.epochs, info_.stopped_early = r.stopped_early;
+  if (n_val > 0) info_.validation_mse = r.validation_mse;
+  info_.loss = loss(r.p, xs, ys, nullptr, &info_.mse);
   return info_;
 }
 

@@ -7,13 +7,15 @@
 //          (the "regularisation ratio" of common NN toolboxes; reproduces the study's ~2 %)
 //   sum:   L = (1/N) sum_i ||Y_i - O_i||^2 + lambda * ||W||^2  (the study's Eq. 8 read literally)
 // Training: full-batch gradient descent (the study: alpha = 1e-4), Adam, or L-BFGS, optional early
-// stopping on a held-out validation share. Weights start Glorot-uniform from a seeded generator,
-// so a fit is deterministic for a seed.
+// stopping on a held-out validation share or by K-fold cross-validation of the training rows (each
+// fold's best epoch on its held-out rows; the final network trains on every row for their mean). Weights start
+// Glorot-uniform from a seeded generator, so a fit is deterministic for a seed.
 #pragma once
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -43,6 +45,7 @@ struct BpnnConfig {
   double lambda = 0.1;
   double validation_share = 0;  // share of the training rows held out for early stopping
   long patience = 200;          // epochs without validation improvement before stopping
+  long stopping_folds = 0;      // >= 2: early stopping by this many cross-validation folds
   std::uint64_t seed = 1;
   double tolerance = 1e-10;  // relative change of the loss that ends lbfgs early
 };
@@ -53,6 +56,7 @@ struct BpnnFitInfo {
   double validation_mse = -1;  // best validation mse, -1 without early stopping
   long epochs = 0;             // epochs (iterations) run
   bool stopped_early = false;
+  std::vector<long> fold_epochs;  // stopping folds: each fold's best epoch
   nlohmann::json to_json() const;
 };
 
@@ -82,6 +86,16 @@ class BpnnModel {
   const BpnnFitInfo &fit_info() const { return info_; }
 
  private:
+  struct Run {
+    Eigen::VectorXd p;  // the parameters reached (the best validation ones when validating)
+    double validation_mse = std::numeric_limits<double>::infinity();
+    long best_epoch = 0, epochs = 0;
+    bool stopped_early = false;
+  };
+  // Trains fresh weights on (xs, ys), standardised, for at most max_epochs; watches (xv, yv) for
+  // early stopping when it has rows.
+  Run train(const Eigen::MatrixXd &xs, const Eigen::MatrixXd &ys, const Eigen::MatrixXd &xv, const Eigen::MatrixXd &yv,
+            long max_epochs);
   Eigen::MatrixXd forward(const Eigen::MatrixXd &xs) const;  // standardised in and out
   long weight_count() const;
 

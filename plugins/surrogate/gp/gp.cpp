@@ -1,8 +1,9 @@
 // surrogate/gp: Gaussian-process regression as a plugin (mean and standard deviation per output).
 // The math lives in gp_model.{hpp,cpp}; this file declares the parameter schema and the C glue.
 // fit_info() reports per output the fitted length scales (input units), signal and noise standard
-// deviations (output units), the log marginal likelihood, and `loo_mean`: closed-form leave-one-out
-// predictions at the training rows (rows x outputs, output units) for cross-validated errors.
+// deviations (output units: the host's train report shows them), the log marginal likelihood, and
+// `loo_mean`: closed-form leave-one-out predictions at the training rows (rows x outputs, output
+// units) for cross-validated errors. The noise is learnt, with a weak log-normal prior (gp_model.hpp).
 #include <spreadmap/plugin.hpp>
 #include <spreadmap/surrogate.hpp>
 
@@ -24,6 +25,10 @@ struct Gp {
                  "lower bound of the noise variance n^2 as a share of each output's variance"),
       sm::number("noise_max", "-", 1e-14, 10, 1, "upper bound of the noise variance, same scale"),
       sm::integer("max_iterations", 1, 100000, 300, "L-BFGS iterations per start"),
+      sm::number("noise_prior_median", "-", 1e-12, 1, 1e-2,
+                 "median of the log-normal prior on the noise variance n^2, as a share of each output's variance"),
+      sm::number("noise_prior_width", "-", 0, 20, 3,
+                 "standard deviation of log n^2 under that prior (0 = no prior: the plain marginal likelihood)"),
   };
   static constexpr int has_std = 1;
 
@@ -38,6 +43,8 @@ struct Gp {
     c.noise_min = v["noise_min"];
     c.noise_max = v["noise_max"];
     c.max_iterations = v.integer("max_iterations");
+    c.noise_prior_median = v["noise_prior_median"];
+    c.noise_prior_width = v["noise_prior_width"];
     if (c.noise_min > c.noise_max)
       throw sm::ParamError("noise_min = " + std::to_string(c.noise_min) + " is above noise_max = " +
                            std::to_string(c.noise_max) + "; lower noise_min or raise noise_max");

@@ -93,6 +93,18 @@ double GpModel::negative_log_likelihood(const VectorXd &theta, const MatrixXd &x
   return value;
 }
 
+double GpModel::negative_log_posterior(const VectorXd &theta, const MatrixXd &xs, const VectorXd &ys,
+                                       VectorXd *grad) const {
+  double value = negative_log_likelihood(theta, xs, ys, grad);
+  if (config_.noise_prior_width <= 0 || !std::isfinite(value)) return value;
+  // log-normal prior on the noise share n^2: log n^2 ~ N(log median, width^2)
+  const int d = int(xs.cols());
+  const double z = (theta[d + 1] - std::log(config_.noise_prior_median)) / config_.noise_prior_width;
+  value += 0.5 * z * z;
+  if (grad) (*grad)[d + 1] += z / config_.noise_prior_width;
+  return value;
+}
+
 void GpModel::prepare(Output &out, const VectorXd &ys) const {
   const int d = int(xs_.cols());
   MatrixXd k = kernel(out.theta, xs_, xs_);
@@ -141,7 +153,7 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
   for (Eigen::Index c = 0; c < y.cols(); ++c) {
     const VectorXd ys = ys_all.col(c);
     Random rng(config_.seed + std::uint64_t(c) * 0x9e3779b97f4a7c15ULL);
-    const auto objective = [&](const VectorXd &t, VectorXd &g) { return negative_log_likelihood(t, xs_, ys, &g); };
+    const auto objective = [&](const VectorXd &t, VectorXd &g) { return negative_log_posterior(t, xs_, ys, &g); };
     double best = std::numeric_limits<double>::infinity();
     Output &out = outputs_[std::size_t(c)];
     for (int start = 0; start < config_.restarts; ++start) {
@@ -261,6 +273,7 @@ nlohmann::json GpModel::info() const {
   }
   return {{"kernel", name_of(config_.kernel)},
           {"restarts", config_.restarts},
+          {"noise_prior", {{"median_share", config_.noise_prior_median}, {"log_width", config_.noise_prior_width}}},
           {"outputs", outs},
           {"loo_mean", fitted() ? matrix_json(loo_mean()) : nlohmann::json::array()}};
 }

@@ -4,9 +4,12 @@
 // Kernels (ARD: one length scale l_d per input; r^2 = sum_d (x_d - x'_d)^2 / l_d^2):
 //   squared_exponential  k = s^2 exp(-r^2 / 2)
 //   matern52             k = s^2 (1 + sqrt5 r + 5 r^2 / 3) exp(-sqrt5 r)
-// plus a noise variance n^2 on the diagonal. Hyperparameters theta = log(s^2, l_1..l_d, n^2) maximise
-// the log marginal likelihood (analytic gradient, bounded L-BFGS) from `restarts` starts: the first
-// at s = l = 1, the others drawn from a seeded generator; the best wins.
+// plus a noise variance n^2 on the diagonal (the nugget: the scatter of repeated runs). Hyperparameters
+// theta = log(s^2, l_1..l_d, n^2) maximise the log marginal likelihood plus a log-normal prior on n^2
+// (median 1e-2 of the output's variance, log-sd 3: weak, yet on a handful of noisy points it keeps
+// the likelihood's flat valley from sliding to interpolation), by analytic gradient and bounded
+// L-BFGS from `restarts` starts: the first at s = l = 1, the others drawn from a seeded generator;
+// the best wins. noise_prior_width = 0 gives the plain marginal likelihood (scikit-learn's).
 // Predictions: the posterior mean and the standard deviation of the latent function (without the
 // noise). Leave-one-out predictions come in closed form, mu_-i = y_i - alpha_i / [K^-1]_ii (R&W 5.12).
 #pragma once
@@ -32,6 +35,9 @@ struct GpConfig {
   double noise_min = 1e-12;   // lower bound of n^2, as a share of each output's variance
   double noise_max = 1.0;     // upper bound of n^2, same scale
   long max_iterations = 300;  // L-BFGS iterations per start
+  // Log-normal prior on n^2 (share of each output's variance): log n^2 ~ N(log median, width^2);
+  // width 0 = none (plain marginal likelihood).
+  double noise_prior_median = 1e-2, noise_prior_width = 3.0;
 };
 
 class GpModel {
@@ -50,6 +56,10 @@ class GpModel {
   // Returns +inf when K is not positive definite. Public for the gradient test.
   double negative_log_likelihood(const Eigen::VectorXd &theta, const Eigen::MatrixXd &xs, const Eigen::VectorXd &ys,
                                  Eigen::VectorXd *grad) const;
+
+  // The same plus the noise prior's -log density (up to a constant): what the fit minimises.
+  double negative_log_posterior(const Eigen::VectorXd &theta, const Eigen::MatrixXd &xs, const Eigen::VectorXd &ys,
+                                Eigen::VectorXd *grad) const;
 
   nlohmann::json to_json() const;  // state: kernel, scaling, training data, theta per output
   static GpModel from_json(const nlohmann::json &j, GpConfig config);
