@@ -13,6 +13,7 @@
 #include "core/schema.hpp"
 #include "core/stop.hpp"
 #include "core/suggest.hpp"
+#include "workflow/calibrate/calibration_file.hpp"
 #include "workflow/command_line.hpp"
 #include "workflow/commands.hpp"
 #include "workflow/scene_file/scene_build.hpp"
@@ -30,7 +31,7 @@ commands:
   run WORKFLOW        run a workflow (simulate -> characterise -> train -> map)
   simulate SCENE      run one explicit scene file (particles, walls, outputs; docs/scenes.md)
   calibrate FILE      friction and rolling friction from measured bulk angles (docs/calibration.md)
-  validate FILE       check a workflow or a scene file completely without running anything
+  validate FILE       check a workflow, scene or calibration file completely without running anything
   plugins [NAME]      list plugins and their parameters (the reference manual)
   characterise STATE  layer metrics of a particle file (.vtp or .csv)
   train TABLE         fit a surrogate to a CSV table
@@ -137,8 +138,10 @@ int cmd_validate(int argc, char **argv) {
   po::options_description d("validate options");
   std::vector<std::string> files;
   Common c;
-  d.add_options()("workflow", po::value(&files)->required()->multitoken(),
-                  "workflow or scene file(s): a file with neither stages nor scene at its top is a scene file");
+  d.add_options()(
+      "workflow", po::value(&files)->required()->multitoken(),
+      "workflow, scene or calibration file(s): a file with parameters and tests at its top is a calibration "
+      "file, one with neither stages nor scene a scene file");
   c.add(d);
   po::positional_options_description p;
   p.add("workflow", -1);
@@ -148,7 +151,14 @@ int cmd_validate(int argc, char **argv) {
   int failures = 0;
   for (const auto &f : files) {
     try {
-      if (sm::scene_file::is_scene_document(sm::load_yaml(f))) {
+      const YAML::Node root = sm::load_yaml(f);
+      if (sm::calibrate::is_calibration_document(root)) {
+        const auto c = sm::calibrate::read_calibration_file(f, sm::PluginRegistry::global());
+        std::cout << f << ": ok (calibration file: " << c.parameters.size() << " parameters, " << c.tests.size()
+                  << " bulk tests)\n";
+        continue;
+      }
+      if (sm::scene_file::is_scene_document(root)) {
         const auto loaded = sm::scene_file::load_scene(f, sm::PluginRegistry::global());
         std::cout << f << ": ok (scene file: " << loaded.particles.set.size() << " particles, "
                   << loaded.scene.walls.size() << " walls)\n";

@@ -48,8 +48,10 @@ struct SceneLaw {
 
 }  // namespace
 
+bool is_calibration_document(const YAML::Node &root) { return root.IsMap() && root["parameters"] && root["tests"]; }
+
 CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &registry) {
-  const YAML::Node root = load_yaml(path);
+  YAML::Node root = load_yaml(path);  // not const: a missing key reads as undefined, not invalid
   const std::string file = path.string();
   Diagnostics diag;
   CalibrationFile c;
@@ -65,7 +67,7 @@ CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &regi
 
   // tests: each scene read whole (its own errors are its file's), its contact law kept for the ranges
   std::vector<SceneLaw> laws;
-  const YAML::Node tests = root["tests"];
+  YAML::Node tests = root["tests"];
   if (!tests || !tests.IsSequence() || tests.size() == 0)
     diag.error(Location::of(file, tests ? tests : root), "tests", "expected a list of bulk tests",
                "add tests: [{scene: repose.yaml, measure: heap_angle, angle: 32 deg, uncertainty: 1 deg}]");
@@ -106,7 +108,7 @@ CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &regi
   }
 
   // parameters: keys of every test's contact law, ranges inside the law's own
-  const YAML::Node params = root["parameters"];
+  YAML::Node params = root["parameters"];
   if (!params || !params.IsMap() || params.size() == 0)
     diag.error(Location::of(file, params ? params : root), "parameters",
                "expected a mapping of contact-law keys to ranges",
@@ -144,7 +146,7 @@ CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &regi
   }
 
   // the surrogate
-  const YAML::Node model = root["model"];
+  YAML::Node model = root["model"];
   c.model = model && model["use"] ? model["use"].as<std::string>() : "gp";
   try {
     const auto &plugin = registry.get("surrogate", c.model);

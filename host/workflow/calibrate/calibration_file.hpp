@@ -38,6 +38,9 @@ struct CalibrationFile {
   nlohmann::json model_params;  // validated SI, every key
 };
 
+// Is this YAML document a calibration file? It has `parameters` and `tests` at its top level.
+bool is_calibration_document(const YAML::Node &root);
+
 // Throws InputError with every problem of the file (file:line:col, key, fix) before anything runs.
 // The parameters are checked against the contact law of every test's scene (a key it does not have,
 // a range outside the law's).
