@@ -268,6 +268,11 @@ template <class Real> void Simulation<Real>::resolve_step() {
   const Settings &s = state_.settings;
   const Domain &d = state_.domain;
   const double crit = critical_dt();
+  if (!(crit > 0))
+    throw SetupError(
+        "no time step is stable: a contact law reports that its attraction outweighs its normal stiffness for "
+        "these particles (e.g. SJKR cohesion with k_c >= K_n / (2 pi r_eff)), so contacts collapse; lower the "
+        "cohesion (cohesion_energy_density) or stiffen the law (a larger v_max / overlap_max)");
   if (s.dt > 0) {
     if (s.dt > crit && !s.allow_unstable_dt)
       throw SetupError(

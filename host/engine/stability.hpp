@@ -34,7 +34,8 @@ double stable_omega_dt(double zeta);
 inline constexpr double packing_frequency_factor = 2.0;
 
 // Stability limit of one isolated contact of this type: the law evaluated at (m_eq, r_eff).
-// +infinity for a law without stiffness (natural_frequency <= 0).
+// +infinity for a law without stiffness (natural_frequency <= 0); 0 where no step is stable (the law's
+// natural_frequency is +infinity: its attraction outweighs its stiffness, the contact collapses).
 double contact_critical_dt(const ContactLaw &law, double m_eq, double r_eff);
 
 // dt_crit of a scene whose contacts are of this type: the limit of the densest packing's fastest mode.

@@ -1,6 +1,7 @@
 // Engine mechanics: stability formula, time-step refusal, removal, periodic wrapping, determinism
 // across threads and runs, checkpoint/resume, history carried over list rebuilds.
 #include "engine_test_law.hpp"
+#include "plugins/contact/hooke_slider/hooke_slider.hpp"
 #include "temporaries.hpp"
 
 #include <engine/errors.hpp>
@@ -112,6 +113,32 @@ TEST(EngineTimeStep, RefusesAStepAboveCritical) {
     const std::string what = e.what();
     EXPECT_NE(what.find(fmt::format("{:.6g}", s.dt)), std::string::npos) << what;
     EXPECT_NE(what.find(fmt::format("{:.6g}", sim.critical_dt())), std::string::npos) << what;
+  }
+}
+
+// SJKR cohesion that cancels a Hooke law's spring (k_c >= K_n / (2 pi r_eff): 2.66e4 J/m^3 for 30 um
+// Ti-6Al-4V spheres with the default V_max / Delta_max) collapses contacts at any step: the law says so
+// with an infinite frequency, and the engine refuses the scene before the first step, naming the fix.
+TEST(EngineTimeStep, RefusesACohesionThatCollapsesContacts) {
+  nlohmann::json params = nlohmann::json::object();
+  for (const sm_param_v1 &q : sm::HookeSlider::params)
+    if (q.type == SM_NUMBER) params[q.name] = q.def;
+    else if (q.type == SM_BOOLEAN) params[q.name] = q.def != 0;
+    else params[q.name] = q.def_text;
+  params["cohesion_energy_density"] = 4e4;
+  const sm::HookeSlider law = sm::HookeSlider::bind(sm::Values(params));
+  const ContactLaw bound{&sm::detail::ContactOps<sm::HookeSlider>::table, &law};
+  ParticleSet p;
+  push_particle(p, 0.005, 0.005, 0.001, 15e-6);
+  Simulation<double> sim({{0, 0, 0}, {0.01, 0.01, 0.01}, {false, false, false}}, bound, quiet());
+  sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bound});
+  sim.add_particles(p, 4430);
+  EXPECT_EQ(sim.critical_dt(), 0.0);
+  try {
+    sim.step();
+    FAIL() << "a collapsing cohesion was accepted";
+  } catch (const SetupError &e) {
+    EXPECT_NE(std::string(e.what()).find("no time step is stable"), std::string::npos) << e.what();
   }
 }
 

@@ -92,6 +92,12 @@ template <class Law, class Real = double> class Integrator {
     kick();
   }
 
+  // A constant external force on sphere i [N] (a pull or a load), added at every kick from now on.
+  void set_external_force(std::size_t i, V3 f) {
+    external_.resize(s_.size(), V3{0, 0, 0});
+    external_[i] = f;
+  }
+
   const std::vector<Sphere> &spheres() const { return s_; }
   Sphere &sphere(std::size_t i) { return s_[i]; }
   V3 force(std::size_t i) const { return {double(fx_[i]), double(fy_[i]), double(fz_[i])}; }
@@ -109,6 +115,7 @@ template <class Law, class Real = double> class Integrator {
     for (std::size_t i = 0; i < s_.size(); ++i) {
       Sphere &s = s_[i];
       s.v += (force(i) * (1 / s.m) + g_) * (0.5 * dt_);
+      if (!external_.empty()) s.v += external_[i] * (0.5 * dt_ / s.m);
       s.w += torque(i) * (0.5 * dt_ / s.inertia());
     }
   }
@@ -179,6 +186,7 @@ template <class Law, class Real = double> class Integrator {
   std::vector<Plane> walls_;
   double dt_, t_ = 0;
   V3 g_;
+  std::vector<V3> external_;  // empty: none
   std::vector<Real> x_, y_, z_, vx_, vy_, vz_, wx_, wy_, wz_, r_, m_, fx_, fy_, fz_, tx_, ty_, tz_;
   std::vector<std::uint32_t> start_, nbr_;
   std::vector<Real> pair_hist_;

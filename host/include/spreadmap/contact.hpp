@@ -9,6 +9,7 @@
 //   double damping_ratio(double m_eq, double r_eff) const;      zeta of its dashpot at that stiffness
 //   bool makes_torque() const;                    whether any tangential force or rolling torque exists
 //   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real>&, Real *hist) const;
+// and, with the cohesion part, `Cohesion cohesion` and force<Cohesive>() (see WithCohesion below).
 // A law without history whose operator() decides per contact with selects (a ? b : c on computed
 // values) rather than branches runs on SIMD lanes in the CPU pair loop (pair_once.hpp).
 #pragma once
@@ -18,6 +19,7 @@
 #include <spreadmap/simd.hpp>
 #include <spreadmap/team.hpp>
 
+#include <concepts>
 #include <type_traits>
 
 namespace spreadmap {
@@ -240,19 +242,48 @@ template <class Law, class Real> void wall_loop(const Law &law, const Particles<
   }
 }
 
+// A law with the cohesion part (contact_parts.hpp) has a member `cohesion` and writes its force as
+//   template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &, Real *hist) const;
+// with the part under `if constexpr (Cohesive)`. Its loops are compiled twice, through WithCohesion, and
+// the choice is made once per batch (in_loop_form): a scene without cohesion runs the law's code without
+// the part, the same instructions and bits as a law that never had it.
+template <class Law>
+concept HasCohesion = requires(const Law &law) {
+  { law.cohesion.on } -> std::convertible_to<bool>;
+};
+
+template <class Law, bool Cohesive> struct WithCohesion {
+  static constexpr int history = Law::history;
+  Law law;
+  template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
+    return law.template force<Cohesive>(c, hist);
+  }
+};
+
+// Calls run(law as the loops take it): WithCohesion<Law, on?> for a law with the cohesion part, else the law.
+template <class Law, class Run> decltype(auto) in_loop_form(const Law &law, Run &&run) {
+  if constexpr (HasCohesion<Law>) {
+    if (law.cohesion.on) return run(WithCohesion<Law, true>{law});
+    return run(WithCohesion<Law, false>{law});
+  } else {
+    return run(law);
+  }
+}
+
 namespace detail {
 template <class Law> struct ContactOps {
   static const Law &law(const void *s) { return *static_cast<const Law *>(s); }
   static double frequency(const void *s, double m, double r) { return law(s).natural_frequency(m, r); }
   static double zeta(const void *s, double m, double r) { return law(s).damping_ratio(m, r); }
   static int torque(const void *s) { return law(s).makes_torque() ? 1 : 0; }
-  static void p64(const void *s, const Particles<double> *p, const PairList<double> *l) { pair_loop(law(s), *p, *l); }
-  static void p32(const void *s, const Particles<float> *p, const PairList<float> *l) { pair_loop(law(s), *p, *l); }
-  static void w64(const void *s, const Particles<double> *p, const WallContacts<double> *w) {
-    wall_loop(law(s), *p, *w);
+  template <class Real> static void pairs(const void *s, const Particles<Real> *p, const PairList<Real> *l) {
+    in_loop_form(law(s), [&](const auto &form) { pair_loop(form, *p, *l); });
   }
-  static void w32(const void *s, const Particles<float> *p, const WallContacts<float> *w) { wall_loop(law(s), *p, *w); }
-  static constexpr sm_contact_ops_v1 table = {Law::history, &frequency, &zeta, &torque, &p64, &p32, &w64, &w32};
+  template <class Real> static void walls(const void *s, const Particles<Real> *p, const WallContacts<Real> *w) {
+    in_loop_form(law(s), [&](const auto &form) { wall_loop(form, *p, *w); });
+  }
+  static constexpr sm_contact_ops_v1 table = {Law::history,   &frequency,    &zeta,          &torque,
+                                              &pairs<double>, &pairs<float>, &walls<double>, &walls<float>};
 };
 }  // namespace detail
 

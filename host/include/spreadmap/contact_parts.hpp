@@ -5,7 +5,8 @@
 //     optionally clamped and optionally corrected so that the clamped contact still returns eps;
 //   - Coulomb slider variants (stick, viscous, coulomb) for laws without a tangential spring;
 //   - a Cundall-Strack tangential spring with Coulomb cap (history of 3 values);
-//   - rolling resistance (constant directional torque, Ai et al. 2011 model A).
+//   - rolling resistance (constant directional torque, Ai et al. 2011 model A);
+//   - cohesion (SJKR, DMT and JKR pull-off) acting while in contact, off unless a scene asks for it.
 // SI units throughout. The SM_HD parts follow hd.hpp's rules; bind helpers are host-only.
 #pragma once
 #include <spreadmap/contact.hpp>
@@ -14,6 +15,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 namespace spreadmap {
@@ -94,6 +96,8 @@ inline constexpr sm_param_v1 param_clamp_correction = boolean(
     "clamp_correction", false,
     "with clamp_normal: choose the damping so that the clamped contact still rebounds with restitution epsilon");
 
+struct Cohesion;  // below
+
 // F_n = m_eq (omega0^2 delta - 2 zeta omega0 v_n): K_n = m_eq omega0^2 with omega0 = V_max/Delta_max,
 // beta_n = 2 zeta sqrt(K_n m_eq) = -2 ln eps sqrt(K_n m_eq / (pi^2 + ln^2 eps)). The dashpot opposes the
 // relative normal motion (v_n < 0 approaching makes it repulsive).
@@ -109,6 +113,8 @@ struct LinearNormal {
     const double zeta = correct ? damping_ratio_for_clamped_restitution(eps) : damping_ratio_from_restitution(eps);
     return {v["v_max"] / v["overlap_max"], zeta, clamp};
   }
+  // True when a cohesion's softening cancels this spring, K_n = m_eq omega0^2, for these particles.
+  bool collapses_under(const Cohesion &c, double m_eq, double r_eff) const;
   // Normal force along the normal, > 0 repulsive [N].
   template <class Real> SM_HD Real force(Real m_eq, Real overlap, Real v_n) const {
     const Real w = Real(omega0);
@@ -221,5 +227,63 @@ SM_HD Vec3<Real> rolling_torque(Real mu_r, Real r_eff, Real fn_abs, const Vec3<R
 template <class Real> SM_HD void clear_history(Real *hist, int n) {
   for (int q = 0; q < n; ++q) hist[q] = 0;
 }
+
+// ---------------------------------------------------------------- cohesion (in contact)
+
+// Schema entries of the cohesion part, one group added to every law's params[]. Each value stands on its
+// own (0 = none), so no combination is refused; the SJKR and surface-energy attractions add up if both are set.
+// k_c's range ends where the Hooke laws' contact of two 200 um spheres would collapse (see outweighs());
+// it covers the values used with LIGGGHTS' cohesion sjkr (1e4 to 3e5 J/m^3).
+inline constexpr sm_param_v1 param_cohesion_energy_density =
+    number("cohesion_energy_density", "J/m^3", 0, 5e5, 0,
+           "k_c: SJKR cohesion, attraction k_c A in contact with A = 2 pi r_eff delta (0: none)");
+inline constexpr sm_param_v1 param_surface_energy =
+    number("surface_energy", "J/m^2", 0, 10, 0,
+           "gamma: surface energy, a constant attraction in contact equal to the pull-off force (0: none)");
+inline constexpr sm_param_v1 param_pull_off = enumeration(
+    "pull_off", "dmt|jkr", "dmt", "pull-off force of surface_energy: dmt 2 pi gamma r_eff, jkr 1.5 pi gamma r_eff");
+
+// Attractive normal force while two bodies overlap (delta > 0), subtracted from the law's repulsion:
+//   SJKR:         F_c = k_c A,             A = 2 pi r_eff delta (the overlap's intersection circle to first
+//                                          order in delta/r; LIGGGHTS' cohesion sjkr takes the exact lens)
+//   surface energy, pull_off: dmt  F_c = 2 pi gamma r_eff   (the DMT pull-off force, constant)
+//                   pull_off: jkr  F_c = 1.5 pi gamma r_eff (the JKR pull-off force, constant; not the JKR
+//                                                            force-overlap curve)
+// One formula, F_c = r_eff (area_rate delta + pull_off_rate), covers them. Nothing acts at a gap: the
+// engine gives a law touching contacts only (no cut-off range beyond contact; docs/cohesion.md).
+// `on` is false when both are 0; the laws' loops are then compiled without this part (WithCohesion in
+// contact.hpp), so a scene without cohesion runs the very code and bits it ran before.
+struct Cohesion {
+  bool on;
+  double area_rate;      // 2 pi k_c [N/m^2]
+  double pull_off_rate;  // 2 pi gamma (dmt) or 1.5 pi gamma (jkr) [N/m]
+
+  static Cohesion bind(const Values &v) {
+    const double k_c = v["cohesion_energy_density"], gamma = v["surface_energy"];
+    const double factor = v.str("pull_off") == "jkr" ? 1.5 : 2.0;
+    return {k_c > 0 || gamma > 0, 2 * pi * k_c, factor * pi * gamma};
+  }
+  // Attractive force [N] (> 0 pulls the bodies together) of a contact with this overlap.
+  template <class Real> SM_HD Real force(Real r_eff, Real overlap) const {
+    return r_eff * (Real(area_rate) * overlap + Real(pull_off_rate));
+  }
+  // How much the attraction softens the contact: -dF_c/d delta [N/m] (sjkr; 0 for dmt and jkr).
+  double softening(double r_eff) const { return area_rate * r_eff; }
+  // True when the softening cancels a linear spring of this stiffness [N/m]: the net force then
+  // attracts at every overlap and the contact collapses at any step.
+  bool outweighs(double stiffness, double r_eff) const { return softening(r_eff) >= stiffness; }
+  // Work the attraction does while a contact closes from 0 to `overlap` [J].
+  double work(double r_eff, double overlap) const {
+    return r_eff * overlap * (0.5 * area_rate * overlap + pull_off_rate);
+  }
+};
+
+inline bool LinearNormal::collapses_under(const Cohesion &c, double m_eq, double r_eff) const {
+  return c.outweighs(m_eq * omega0 * omega0, r_eff);
+}
+
+// What natural_frequency returns where no step is stable (a law whose attraction outweighs its
+// stiffness): an infinitely fast contact, whose critical step is 0; the host then refuses the scene.
+inline constexpr double no_stable_step = std::numeric_limits<double>::infinity();
 
 }  // namespace spreadmap

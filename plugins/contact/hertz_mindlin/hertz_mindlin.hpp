@@ -16,7 +16,10 @@
 // natural_frequency is evaluated at the Hertz stiffness of an undamped impact at v_max, whose overlap
 // is delta_max = (15 m_eq v_max^2 / (16 E* sqrt(R)))^(2/5); it is the larger of the normal mode
 // sqrt(S_n/m_eq) and the tangential one sqrt(k_t/m_t), so the host can pick a stable step.
-// Rolling resistance optional (contact_parts.hpp). Units SI.
+// Rolling resistance optional (contact_parts.hpp). Optional cohesion in contact (SJKR, DMT or JKR pull-off;
+// contact_parts.hpp, docs/cohesion.md), subtracted from F_n; natural_frequency then takes the overlap of
+// the impact at v_max with the attraction's work added (the SJKR softening, which only slows the
+// contact, is left out: the step stays on the safe side). Units SI.
 // History: 3 values per contact, the tangential spring elongation s [m] in the global frame.
 #pragma once
 #include <spreadmap/contact.hpp>
@@ -36,6 +39,9 @@ struct HertzMindlin {
       param_clamp_normal,
       number("v_max", "m/s", 1e-4, 1e3, 0.5,
              "V_max: impact speed at which natural_frequency evaluates the Hertz stiffness (time step)"),
+      param_cohesion_energy_density,
+      param_surface_energy,
+      param_pull_off,
   };
   static constexpr int history = 3;
 
@@ -46,6 +52,7 @@ struct HertzMindlin {
   double mu_r;
   double v_max;  // [m/s]
   bool clamp;
+  Cohesion cohesion;
 
   // Restitution of the dimensionless Hertz impact with damping factor alpha (RK4 with `h` time units
   // against a contact time of about 3.2; h = 2e-3 is within 2e-5 of the converged value). Not
@@ -97,12 +104,27 @@ struct HertzMindlin {
             v["friction"],
             v["rolling_friction"],
             v["v_max"],
-            clamp};
+            clamp,
+            Cohesion::bind(v)};
   }
 
-  // Overlap of an undamped impact at v_max [m].
+  // Overlap of an undamped impact at v_max [m]: (8/15) E* sqrt(R) delta^(5/2) = m v^2/2, plus the work of
+  // the attraction with cohesion (solved by bisection; the elastic energy outgrows the attraction's
+  // work, so the root is the one crossing).
   double overlap_at_v_max(double m_eq, double r_eff) const {
-    return std::pow(15 * m_eq * v_max * v_max / (16 * e_star * std::sqrt(r_eff)), 0.4);
+    const double cohesionless = std::pow(15 * m_eq * v_max * v_max / (16 * e_star * std::sqrt(r_eff)), 0.4);
+    if (!cohesion.on) return cohesionless;
+    auto excess = [&](double d) {
+      return 8.0 / 15.0 * e_star * std::sqrt(r_eff) * d * d * std::sqrt(d) - 0.5 * m_eq * v_max * v_max -
+             cohesion.work(r_eff, d);
+    };
+    double lo = 0, hi = cohesionless;
+    while (excess(hi) < 0) hi *= 2;
+    for (int k = 0; k < 200 && hi - lo > 1e-14 * hi; ++k) {
+      const double mid = 0.5 * (lo + hi);
+      (excess(mid) < 0 ? lo : hi) = mid;
+    }
+    return hi;
   }
   double natural_frequency(double m_eq, double r_eff) const {
     const double a = std::sqrt(r_eff * overlap_at_v_max(m_eq, r_eff));
@@ -112,6 +134,9 @@ struct HertzMindlin {
   bool makes_torque() const { return mu > 0 || mu_r > 0; }
 
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
+    return cohesion.on ? force<true>(c, hist) : force<false>(c, hist);
+  }
+  template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
     if (!(c.overlap > 0)) {
       clear_history(hist, history);
@@ -125,6 +150,7 @@ struct HertzMindlin {
     const Real beta_t = Real(alpha) * std::sqrt(tangential_mass(c.m_eq) * k_t);
     f.tangent = tangential_spring(c.normal, c.v_t, k_t, beta_t, Real(mu) * fn_abs, c.dt, hist);
     f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    if constexpr (Cohesive) f.normal -= cohesion.force(c.r_eff, c.overlap);
     return f;
   }
 };

@@ -10,7 +10,8 @@
 // This is the physics of LIGGGHTS' hooke/stiffness with tangential history (and LAMMPS
 // gran/hooke/history): a stuck contact holds a static tangential force, so nothing creeps.
 // Reference: Cundall & Strack 1979; LAMMPS pair gran/hooke/history (slip reset of the spring).
-// Assumptions: spheres, cohesionless; F_n unclamped unless clamp_normal; the cap uses |F_n|.
+// Assumptions: spheres; F_n unclamped unless clamp_normal; the cap uses |F_n| of the repulsion.
+// Optional cohesion in contact (SJKR, DMT or JKR pull-off; contact_parts.hpp, docs/cohesion.md), subtracted from F_n.
 // Units SI. History: 3 values per contact, the spring elongation s [m] in the global frame.
 #pragma once
 #include <spreadmap/contact.hpp>
@@ -31,6 +32,9 @@ struct HookeHistory {
       param_clamp_normal,
       param_clamp_correction,
       param_rolling_friction,
+      param_cohesion_energy_density,
+      param_surface_energy,
+      param_pull_off,
   };
   static constexpr int history = 3;
 
@@ -39,19 +43,32 @@ struct HookeHistory {
   double kappa;         // k_t / K_n
   double tangent_rate;  // beta_t / m_eq = 2 zeta omega0 sqrt(kappa 2/7) [1/s]
   double mu_r;
+  Cohesion cohesion;
 
   static HookeHistory bind(const Values &v) {
     const LinearNormal n = LinearNormal::bind(v);
     const double kappa = v["tangential_stiffness_ratio"];
-    return {n, v["friction"], kappa, 2 * n.zeta * n.omega0 * std::sqrt(kappa * 2.0 / 7.0), v["rolling_friction"]};
+    return {n,
+            v["friction"],
+            kappa,
+            2 * n.zeta * n.omega0 * std::sqrt(kappa * 2.0 / 7.0),
+            v["rolling_friction"],
+            Cohesion::bind(v)};
   }
 
-  // The tangential mode (k_t over m_t) is the faster one when kappa > 2/7.
-  double natural_frequency(double, double) const { return normal.omega0 * std::sqrt(max(1.0, kappa * 3.5)); }
+  // The tangential mode (k_t over m_t) is the faster one when kappa > 2/7. The SJKR softening only slows
+  // the normal mode, unless it cancels K_n.
+  double natural_frequency(double m_eq, double r_eff) const {
+    if (normal.collapses_under(cohesion, m_eq, r_eff)) return no_stable_step;
+    return normal.omega0 * std::sqrt(max(1.0, kappa * 3.5));
+  }
   double damping_ratio(double, double) const { return normal.zeta; }
   bool makes_torque() const { return mu > 0 || mu_r > 0; }
 
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
+    return cohesion.on ? force<true>(c, hist) : force<false>(c, hist);
+  }
+  template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
     if (!(c.overlap > 0)) {
       clear_history(hist, history);
@@ -63,6 +80,7 @@ struct HookeHistory {
     const Real k_t = Real(kappa) * c.m_eq * w * w;
     f.tangent = tangential_spring(c.normal, c.v_t, k_t, c.m_eq * Real(tangent_rate), Real(mu) * fn_abs, c.dt, hist);
     f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    if constexpr (Cohesive) f.normal -= cohesion.force(c.r_eff, c.overlap);
     return f;
   }
 };

@@ -8,7 +8,7 @@
 // Every contact therefore has the natural frequency omega0 = V_max/Delta_max whatever the sizes
 // (defaults 0.5 m/s and 2.5 um: omega0 = 2e5 rad/s, K_n = 724.857 N/m between two 250 um Ti-6Al-4V
 // spheres and 1449.71 N/m against a wall, contact time pi/omega_d = 1.5748e-5 s at eps = 0.8).
-// Assumptions: spheres, cohesionless; the force is not clamped by default (the study's Eq. 3 and the
+// Assumptions: spheres, cohesionless by default; the force is not clamped by default (the study's Eq. 3 and the
 // LIGGGHTS peer runs), so the dashpot may pull at the end of a contact and the isolated collision
 // rebounds with exactly eps; |F_n| in the slider keeps friction active during that tail. Options:
 // clamp_normal (F_n >= 0; restitution becomes exp(-2 zeta acos zeta / sqrt(1 - zeta^2))) and
@@ -21,6 +21,8 @@
 // within the round-off of the normal speed for none (slip_round_off): a head-on impact has no
 // friction, even with slip_speed_min = 0.
 // Optional rolling resistance (constant directional torque, see contact_parts.hpp).
+// Optional cohesion in contact (SJKR, DMT or JKR pull-off; contact_parts.hpp, docs/cohesion.md), subtracted from F_n
+// after the slider and the rolling torque took |F_n| of the repulsion (LIGGGHTS' tangential_reduce off).
 // References: the reference study (its Eq. 1-4); Cundall & Strack 1979. Units SI.
 // History: none.
 #pragma once
@@ -44,6 +46,9 @@ struct HookeSlider {
       param_clamp_normal,
       param_clamp_correction,
       param_rolling_friction,
+      param_cohesion_energy_density,
+      param_surface_energy,
+      param_pull_off,
   };
   static constexpr int history = 0;
 
@@ -53,18 +58,31 @@ struct HookeSlider {
   double slip_rate;       // gamma_t [1/s]
   double slip_speed_min;  // [m/s]
   double mu_r;            // rolling friction
+  Cohesion cohesion;
 
   static HookeSlider bind(const Values &v) {
     const LinearNormal n = LinearNormal::bind(v);
     const double gamma = v["slip_damping"] > 0 ? v["slip_damping"] : 2 * n.zeta * n.omega0;
-    return {n, v["friction"], slider_from_name(v.str("slider")), gamma, v["slip_speed_min"], v["rolling_friction"]};
+    return {n,
+            v["friction"],
+            slider_from_name(v.str("slider")),
+            gamma,
+            v["slip_speed_min"],
+            v["rolling_friction"],
+            Cohesion::bind(v)};
   }
 
-  double natural_frequency(double, double) const { return normal.omega0; }
+  // The SJKR softening only slows the contact (the step stays the one for omega0) unless it cancels K_n.
+  double natural_frequency(double m_eq, double r_eff) const {
+    return normal.collapses_under(cohesion, m_eq, r_eff) ? no_stable_step : normal.omega0;
+  }
   double damping_ratio(double, double) const { return normal.zeta; }
   bool makes_torque() const { return mu > 0 || mu_r > 0; }
 
-  template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *) const {
+  template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
+    return cohesion.on ? force<true>(c, hist) : force<false>(c, hist);
+  }
+  template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *) const {
     // No branch on the contact (selects only; overlap <= 0 gives zeros), so that loops over contacts vectorise.
     ContactForce<Real> f;
     const bool touching = c.overlap > 0;
@@ -75,6 +93,7 @@ struct HookeSlider {
     f.tangent =
         slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min), round_off);
     f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    if constexpr (Cohesive) f.normal -= touching ? cohesion.force(c.r_eff, c.overlap) : Real(0);
     return f;
   }
 };

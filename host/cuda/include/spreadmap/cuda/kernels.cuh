@@ -12,6 +12,7 @@
 #include <spreadmap/geometry.hpp>
 
 #include <cstdio>
+#include <type_traits>
 
 namespace spreadmap::cuda {
 
@@ -63,12 +64,16 @@ template <class Law> struct ContactCudaOps {
   template <class Real>
   static int pairs(const void *s, const Particles<Real> *p, const PairList<Real> *l, const sm_cuda_launch_v1 *at,
                    sm_error *err) {
-    return launch(pair_kernel<Law, Real>, p->n, at, err, law(s), *p, *l);
+    return in_loop_form(law(s), [&](const auto &form) {
+      return launch(pair_kernel<std::decay_t<decltype(form)>, Real>, p->n, at, err, form, *p, *l);
+    });
   }
   template <class Real>
   static int walls(const void *s, const Particles<Real> *p, const WallContacts<Real> *w, const sm_cuda_launch_v1 *at,
                    sm_error *err) {
-    return launch(wall_kernel<Law, Real>, w->n, at, err, law(s), *p, *w);
+    return in_loop_form(law(s), [&](const auto &form) {
+      return launch(wall_kernel<std::decay_t<decltype(form)>, Real>, w->n, at, err, form, *p, *w);
+    });
   }
   static constexpr sm_contact_cuda_ops_v1 table = {SPREADMAP_CUDA_ABI, Law::history,   &pairs<double>,
                                                    &pairs<float>,      &walls<double>, &walls<float>};
