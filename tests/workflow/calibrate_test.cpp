@@ -56,10 +56,10 @@ class Calibrate : public ::testing::Test {
 TEST_F(Calibrate, DrumAngleGivesBackTheFrictionThatMadeIt) {
   const fs::path out = dir_ / "out";
   const fs::path file = with_angle("drum_friction.yaml", "30 deg");
-  const auto at = calibrate({file.string(), "--out", out.string(), "--at", "friction=0.5"});
+  const auto at = calibrate({file.string(), "--out", out.string(), "--at", "friction=0.4"});
   ASSERT_EQ(at.exit_code, 0) << at.describe();
   const double angle = read_json(out / "at.json")["tests"][0]["angle_deg"];
-  std::printf("drum angle at friction 0.5: %.2f deg\n", angle);
+  std::printf("drum angle at friction 0.4 (not a design point): %.2f deg\n", angle);
 
   const fs::path measured = with_angle("drum_friction.yaml", std::to_string(angle) + " deg");
   const auto run = calibrate({measured.string(), "--out", out.string()});
@@ -69,8 +69,8 @@ TEST_F(Calibrate, DrumAngleGivesBackTheFrictionThatMadeIt) {
   std::printf("friction %.3f (68 %% set %.3f to %.3f); surrogate leave-one-out %.2f deg\n", mu["best"].get<double>(),
               mu["lower"].get<double>(), mu["upper"].get<double>(),
               result["tests"][0]["surrogate_loo_rmse_deg"].get<double>());
-  EXPECT_LE(mu["lower"].get<double>(), 0.5);
-  EXPECT_GE(mu["upper"].get<double>(), 0.5);
+  EXPECT_LE(mu["lower"].get<double>(), 0.4);
+  EXPECT_GE(mu["upper"].get<double>(), 0.4);
   EXPECT_EQ(result["runs"], 3);
 
   // Run again: every run is reused, the answer is the same.

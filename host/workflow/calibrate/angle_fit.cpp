@@ -133,4 +133,12 @@ AngleFit bed_angle(const engine::ParticleSet &s, int slabs) {
   return summarise(std::move(parts), points);
 }
 
+AngleFit pooled(const std::vector<AngleFit> &fits) {
+  std::vector<double> parts;
+  std::size_t points = 0;
+  for (const auto &f : fits) parts.insert(parts.end(), f.parts_deg.begin(), f.parts_deg.end()), points += f.points;
+  if (parts.empty()) throw std::invalid_argument("pooled: no fits");
+  return summarise(std::move(parts), points);
+}
+
 }  // namespace spreadmap::calibrate

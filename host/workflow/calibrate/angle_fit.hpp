@@ -36,4 +36,8 @@ AngleFit heap_angle(const engine::ParticleSet &state, double base_z, int sectors
 // slabs >= 1 (2 or more for an uncertainty).
 AngleFit bed_angle(const engine::ParticleSet &state, int slabs = 4);
 
+// Several fits of the same slope (a drum's surface at several times) as one: every part of every fit
+// pooled, so the uncertainty is the pooled spread over sqrt(all parts).
+AngleFit pooled(const std::vector<AngleFit> &fits);
+
 }  // namespace spreadmap::calibrate
