@@ -28,6 +28,8 @@ class Table {
   std::size_t column(const std::string &name) const;
   bool has_column(const std::string &name) const;
   const std::string &text(std::size_t row, std::size_t col) const { return cells_.at(row).at(col); }
+  // The row's line in the file it was read from (1-based); 0 for a row built in memory.
+  std::size_t line(std::size_t row) const { return row < lines_.size() ? lines_[row] : 0; }
   double number(std::size_t row, std::size_t col) const;  // throws with file:line:column
   std::vector<double> numbers(const std::string &column) const;
   std::vector<std::string> texts(const std::string &column) const;

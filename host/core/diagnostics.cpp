@@ -15,6 +15,7 @@ Location Location::of(const std::string &file, const YAML::Node &node) {
 
 std::string Location::str() const {
   if (line <= 0) return file;
+  if (column <= 0) return file + ":" + std::to_string(line);  // a CSV row
   return file + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 

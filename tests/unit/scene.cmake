@@ -2,5 +2,6 @@
 if(TARGET spreadmap_scene)
   spreadmap_test(unit scene
     SOURCES ${CMAKE_CURRENT_LIST_DIR}/scene_heap_test.cpp ${CMAKE_CURRENT_LIST_DIR}/scene_distribution_test.cpp
+            ${CMAKE_CURRENT_LIST_DIR}/scene_size_test.cpp
     LIBS spreadmap_scene)
 endif()

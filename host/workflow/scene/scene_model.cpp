@@ -41,8 +41,14 @@ void fields(P &p, F &&f) {
   f("count", p.count);
   f("volume", p.volume);
   f("distribution", p.distribution);
+  f("basis", p.basis);
+  f("d10", p.d10);
   f("d50", p.d50);
+  f("d90", p.d90);
   f("sigma", p.sigma);
+  f("standard_deviation", p.standard_deviation);
+  f("d_min", p.d_min);
+  f("d_max", p.d_max);
   f("table", p.table);
   f("seed", p.seed);
   f("heap_from", p.heap_from);

@@ -21,9 +21,13 @@ struct Powder {
   double diameter = 0, density = 0;  // m, kg/m^3
   std::int64_t count = 0;            // spheres (ignored when volume > 0)
   double volume = 0;                 // m^3 of solid
-  std::string distribution;          // mono | lognormal | table
-  double d50 = 0, sigma = 0;         // lognormal
-  nlohmann::json table;              // table: [{diameter, fraction}, ...], else null
+  std::string distribution;          // mono | lognormal | normal | table
+  std::string basis;                 // number | volume | mass: what d10/d50/d90 and table fractions count
+  double d10 = 0, d50 = 0, d90 = 0;  // m; d10 = d90 = 0: lognormal by d50 and sigma, normal by d50 and std
+  double sigma = 0;                  // lognormal: standard deviation of ln d
+  double standard_deviation = 0;     // normal: m
+  double d_min = 0, d_max = 0;       // truncation, m; 0 = the default
+  nlohmann::json table;              // table: SI rows [{diameter, fraction}] or [{from, to, fraction}], else null
   std::int64_t seed = 0;
   double heap_from = 0, heap_to = 0, heap_top = 0;  // m
   double settle_time = 0, settle_speed = 0;         // s, m/s

@@ -1,12 +1,16 @@
 #include "workflow/scene/scene_section.hpp"
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 #include <spreadmap/params.hpp>
 
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
+#include "workflow/scene/powder_cost.hpp"
+#include "workflow/scene/powder_sizes.hpp"
 #include "workflow/scene/presets.hpp"
+#include "workflow/scene/size_table.hpp"
 
 namespace spreadmap {
 namespace sm = spreadmap;
@@ -25,10 +29,22 @@ constexpr sm_param_v1 powder_params[] = {
     sm::number("density", "kg/m^3", 1, 1e5, 4430, "material density rho (Ti-6Al-4V 4430)"),
     sm::integer("count", 0, 1e8, 1600, "number of spheres in the heap (ignored when volume > 0)"),
     sm::number("volume", "m^3", 0, 1, 0, "solid powder volume of the heap; 0 = use count"),
-    sm::enumeration("distribution", "mono|lognormal|table", "mono", "size distribution"),
-    sm::number("d50", "m", 1e-6, 0.1, 250e-6, "lognormal: median diameter D50"),
-    sm::number("sigma", "-", 0, 2, 0.1, "lognormal: standard deviation of ln(d)"),
-    sm::table("table", "table distribution: list of {diameter, fraction} (number fractions)"),
+    sm::enumeration("distribution", "mono|lognormal|normal|table", "mono",
+                    "size distribution: mono (diameter), lognormal, normal or table"),
+    sm::enumeration("basis", "number|volume|mass", "number",
+                    "what d10/d50/d90 and table fractions count: particles, or their volume (= mass)"),
+    sm::number("d10", "m", 0, 0.1, 0, "lognormal/normal: D10, with d50 and d90 (least-squares fit); 0 = not given"),
+    sm::number("d50", "m", 1e-6, 0.1, 250e-6, "lognormal: median D50 (with sigma, or d10 and d90); normal: mean"),
+    sm::number("d90", "m", 0, 0.1, 0, "lognormal/normal: D90, with d10 and d50; 0 = not given"),
+    sm::number("sigma", "-", 0, 2, 0.1, "lognormal: standard deviation of ln(d) (or give d10 and d90)"),
+    sm::number("standard_deviation", "m", 0, 0.1, 0, "normal: standard deviation of d (or give d10 and d90)"),
+    sm::number("d_min", "m", 0, 0.1, 0,
+               "lognormal/normal: smallest diameter (truncation, redrawn); 0 = d50 x exp(-3 sigma) or d50 - 3 std"),
+    sm::number("d_max", "m", 0, 0.1, 0,
+               "lognormal/normal: largest diameter (truncation, redrawn); 0 = d50 x exp(3 sigma) or d50 + 3 std"),
+    sm::table("table",
+              "table: rows {diameter, fraction} or {from, to, fraction} (size classes), or a CSV file with those "
+              "columns; fractions by basis, summing to 1"),
     sm::integer("seed", 0, 4294967295.0, 1, "random seed of the heap insertion"),
     sm::number("heap_from", "m", 0, 10, 6e-3, "x where the heap starts (behind it: the spreader)"),
     sm::number("heap_to", "m", 0, 10, 13e-3, "x where the heap ends (a temporary wall while settling)"),
@@ -176,6 +192,20 @@ void probe_plugins(const nlohmann::json &scene, const LoadedPlugin &law, const L
   probe(geo, scene["spreader"]["params"], "spreader");
 }
 
+// The size distribution's keys; once they and the rest of the scene are valid, its warnings, said
+// once (validate and run resolve the scene once).
+void check_powder(const Scene &scene, const YAML::Node &powder, const std::string &file, PluginRegistry &registry,
+                  Diagnostics &diag) {
+  std::vector<std::string> warnings = check_powder_sizes(scene.powder, powder, file, diag);
+  if (!diag.empty()) return;
+  try {
+    if (auto cost = powder_cost_warning(scene, registry, file)) warnings.push_back(*cost);
+  } catch (const std::exception &e) {  // an estimate only: the run reports real problems itself
+    spdlog::debug("the cost of the scene could not be estimated: {}", e.what());
+  }
+  for (const auto &w : warnings) spdlog::warn("{}", w);
+}
+
 }  // namespace
 
 const char *preset_text(const std::string &preset) {
@@ -210,6 +240,9 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
   for (const auto &s : host_sections)
     scene[s.name] =
         validate_split({s.params, s.n}, p[s.name], user[s.name], file, std::string("scene.") + s.name, diag);
+  const YAML::Node powder = user["powder"] && user["powder"].IsMap() ? user["powder"] : YAML::Node();
+  const fs::path scene_dir = fs::path(file).has_parent_path() ? fs::path(file).parent_path() : fs::path(".");
+  resolve_size_table(scene["powder"], powder["table"], file, scene_dir, diag);
 
   // contact law: particle-particle, then substrate and spreader overrides of the same law
   const YAML::Node contact = overlay(p["contact"], user["contact"]);
@@ -271,12 +304,15 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
   }
   check_consistency(scene, user, file, diag);
   if (diag.empty() && law && geo) probe_plugins(scene, *law, *geo, user, file, diag);
+  std::optional<Scene> typed;
   try {
-    return scene_from_json(scene, file);
+    typed = scene_from_json(scene, file);
   } catch (const InputError &) {
     if (diag.empty()) throw;  // a valid scene always types: this would be a bug here, not the user's
     return std::nullopt;      // its problems are reported already
   }
+  check_powder(*typed, powder, file, registry, diag);
+  return typed;
 }
 
 bool find_scene_key(const Scene &scene, PluginRegistry &registry, const std::string &name, SceneKey &out,

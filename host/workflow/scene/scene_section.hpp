@@ -5,7 +5,8 @@
 // Resolved layout:
 //   preset, precision, backend, threads, deterministic, gravity
 //   domain   {length, width, height, periodic_x, periodic_y}
-//   powder   {diameter, density, count, volume, distribution, d50, sigma, table, seed,
+//   powder   {diameter, density, count, volume, distribution, basis, d10, d50, d90, sigma,
+//             standard_deviation, d_min, d_max, table (SI rows), seed,
 //             heap_from, heap_to, heap_top, settle_time, settle_speed}
 //   time     {step, safety, skin, relax, checkpoint_interval, snapshots, overlap_limit}
 //   contact  {use, params{...}}                  particle-particle law

@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/stop.hpp"
 #include "scene/heap.hpp"
+#include "workflow/scene/powder_sizes.hpp"
 
 namespace spreadmap {
 
@@ -128,24 +129,6 @@ engine::Settings make_settings(const Scene &scene, double dt) {
   return s;
 }
 
-namespace {
-scene::SizeDistribution make_sizes(const Powder &powder) {
-  if (powder.distribution == "lognormal") return scene::SizeDistribution::lognormal(powder.d50, powder.sigma);
-  if (powder.distribution == "table") {
-    std::vector<double> d, f;
-    if (!powder.table.is_array())
-      throw InputError(
-          "error: scene.powder.table: a table distribution needs table: [{diameter: 250 um, fraction: 0.5}, ...]");
-    for (const auto &row : powder.table) {
-      d.push_back(row.at("diameter").is_number() ? row.at("diameter").get<double>() : 0.0);
-      f.push_back(row.at("fraction").is_number() ? row.at("fraction").get<double>() : 0.0);
-    }
-    return scene::SizeDistribution::table(d, f);
-  }
-  return scene::SizeDistribution::monodisperse(powder.diameter);
-}
-}  // namespace
-
 template <class Real>
 ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::string &label, const fs::path &scene_file,
                         const std::function<void(double)> &progress) {
@@ -157,7 +140,7 @@ ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::stri
   const double rest_shift = -(t_settle + 1.0);
 
   scene::HeapSpec spec;
-  const auto sizes = make_sizes(powder);
+  const auto sizes = size_distribution(powder);
   const double dmax = sizes.upper();
   const double top = powder.heap_top > 0 ? powder.heap_top : dom.hi[2] - dmax;
   spec.region = {{powder.heap_from, dom.lo[1], 0.0}, {powder.heap_to, dom.hi[1], top}};

@@ -12,11 +12,13 @@ Scene coarse_grained(const Scene &scene, PluginRegistry &registry) {
   if (k == 1) return scene;
   Scene s = scene;
   Powder &powder = s.powder;
-  powder.diameter *= k;
-  powder.d50 *= k;
+  for (double *length : {&powder.diameter, &powder.d10, &powder.d50, &powder.d90, &powder.standard_deviation,
+                         &powder.d_min, &powder.d_max})
+    *length *= k;
   if (powder.table.is_array())
     for (auto &row : powder.table)
-      if (row.contains("diameter") && row["diameter"].is_number()) row["diameter"] = row["diameter"].get<double>() * k;
+      for (const char *key : {"diameter", "from", "to"})
+        if (row.contains(key) && row[key].is_number()) row[key] = row[key].get<double>() * k;
   if (powder.volume <= 0) powder.count = std::max<long long>(1, std::llround(double(powder.count) / (k * k * k)));
   const SchemaView law = SchemaView::of(*registry.get("contact", s.contact.use).descriptor);
   for (nlohmann::json *params : {&s.contact.params, &s.substrate.law, &s.spreader.law})
