@@ -17,6 +17,7 @@
 #include "workflow/commands.hpp"
 #include "workflow/scene_file/scene_build.hpp"
 #include "workflow/scene_file/scene_outputs.hpp"
+#include "workflow/scene_file/scene_run.hpp"
 
 namespace spreadmap {
 
@@ -97,23 +98,12 @@ int cmd_simulate(int argc, char **argv) {
                scene.run.duration, scene.run.output_times.size(), dir.string());
 
   scene_file::SceneOutputs outputs(dir, scene.run.particles_csv, scene.run.contacts_csv);
-  auto delayed = run->delayed;
-  std::sort(delayed.begin(), delayed.end(), [](const auto &a, const auto &b) { return a.start < b.start; });
-  std::size_t next_motion = 0;
   const auto t0 = std::chrono::steady_clock::now();
   auto keep_going = [](const engine::Simulation<double> &) { return !stop_requested(); };
-  auto advance_to = [&](double t) {
-    if (!sim.run_until(t, keep_going, 100))
+  for (const double t : scene.run.output_times) {
+    if (!scene_file::advance_scene(*run, t, keep_going))
       throw Interrupted(
           fmt::format("interrupted at t = {:.4g} s; the outputs so far are in {}", sim.time(), dir.string()));
-  };
-  for (const double t : scene.run.output_times) {
-    while (next_motion < delayed.size() && delayed[next_motion].start <= t) {
-      advance_to(delayed[next_motion].start);
-      sim.set_plane_wall_velocity(delayed[next_motion].plane, delayed[next_motion].velocity);
-      ++next_motion;
-    }
-    advance_to(t);
     outputs.write(sim, pair_law);
     spdlog::debug("{}: output {} at t = {:.6g} s", scene.name, outputs.count() - 1, sim.time());
   }

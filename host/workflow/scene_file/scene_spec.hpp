@@ -72,7 +72,6 @@ struct SceneFile {
   std::vector<WallSpec> walls;
   ParticleSource particles;
   RunSpec run;
-  nlohmann::json resolved;  // the whole scene in SI, as scene.json records it
 };
 
 // Is this YAML document a scene file (rather than a workflow)? A workflow has `stages` or `scene`
