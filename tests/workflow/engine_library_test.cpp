@@ -52,7 +52,8 @@ TEST(EngineLibrary, TwoSpheresBuiltAgainstTheInstalledPackage) {
 
   // The engine's headers compile clean under the project's warnings in a user's program too.
   const auto configure = t::configure_against(prefix, SPREADMAP_SOURCE_DIR "/examples/engine_two_spheres", build,
-                                              {"-DCMAKE_CXX_FLAGS=-Wall -Wextra"});
+                                              {"-DCMAKE_CXX_FLAGS=" SPREADMAP_BUILD_CXX_FLAGS " -Wall -Wextra",
+                                               "-DCMAKE_EXE_LINKER_FLAGS=" SPREADMAP_BUILD_EXE_LINKER_FLAGS});
   ASSERT_EQ(configure.exit_code, 0) << configure.describe();
   const auto compile = t::cmake({"--build", build.string(), "-j", "2", "--verbose"});
   ASSERT_EQ(compile.exit_code, 0) << compile.describe();

@@ -33,6 +33,10 @@ foreach(t plugin_sdk engine_library)
   target_compile_definitions(test_workflow_${t} PRIVATE
     SPREADMAP_CMAKE_COMMAND="${CMAKE_COMMAND}" SPREADMAP_CXX_COMPILER="${CMAKE_CXX_COMPILER}")
 endforeach()
+# A program linking the installed static engine needs the flags it was compiled with (a sanitizer's
+# runtime in the asan preset; nothing in release).
+target_compile_definitions(test_workflow_engine_library PRIVATE
+  SPREADMAP_BUILD_CXX_FLAGS="${CMAKE_CXX_FLAGS}" SPREADMAP_BUILD_EXE_LINKER_FLAGS="${CMAKE_EXE_LINKER_FLAGS}")
 spreadmap_workflow_test(stage_commands SOURCES ${CMAKE_CURRENT_LIST_DIR}/stage_commands_test.cpp TIMEOUT 300)
 target_link_libraries(test_workflow_stage_commands PRIVATE Eigen3::Eigen)
 if(TARGET spreadmap_render)
