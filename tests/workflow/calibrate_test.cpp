@@ -71,6 +71,9 @@ TEST_F(Calibrate, DrumAngleGivesBackTheFrictionThatMadeIt) {
               result["tests"][0]["surrogate_loo_rmse_deg"].get<double>());
   EXPECT_LE(mu["lower"].get<double>(), 0.4);
   EXPECT_GE(mu["upper"].get<double>(), 0.4);
+  // ... and the drum does identify it: a set inside the box, well narrower than it (0.29-0.52 measured).
+  EXPECT_TRUE(mu["bounded"].get<bool>());
+  EXPECT_LT(mu["upper"].get<double>() - mu["lower"].get<double>(), 0.4);
   EXPECT_EQ(result["runs"], 3);
 
   // Run again: every run is reused, the answer is the same.
@@ -78,6 +81,25 @@ TEST_F(Calibrate, DrumAngleGivesBackTheFrictionThatMadeIt) {
   ASSERT_EQ(again.exit_code, 0) << again.describe();
   EXPECT_NE((again.out + again.err).find("kept from before"), std::string::npos);
   EXPECT_EQ(read_json(out / "calibration.json")["parameters"], result["parameters"]);
+
+  // A scene file changed in place is not answered from the runs made with its old text.
+  const fs::path scene = dir_ / "drum.yaml";
+  auto write_scene = [&](const std::string &seed) {
+    std::ifstream in(fs::path(SPREADMAP_SOURCE_DIR) / "examples" / "scenes" / "rotating_drum.yaml");
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    std::ofstream(scene) << std::regex_replace(text, std::regex("seed: 3"), "seed: " + seed);
+  };
+  {
+    std::ifstream in(measured);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    std::ofstream(measured) << std::regex_replace(text, std::regex("scene: [^,]*"), "scene: " + scene.string());
+  }
+  write_scene("3");
+  ASSERT_EQ(calibrate({measured.string(), "--out", out.string()}).exit_code, 0);
+  write_scene("4");
+  const auto changed = calibrate({measured.string(), "--out", out.string()});
+  ASSERT_EQ(changed.exit_code, 0) << changed.describe();
+  EXPECT_EQ((changed.out + changed.err).find("kept from before"), std::string::npos) << changed.err;
 
   // An angle no friction in the box gives is refused, naming the test and the fix.
   const fs::path steep = with_angle("drum_friction.yaml", "80 deg");

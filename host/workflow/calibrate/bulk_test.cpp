@@ -20,6 +20,15 @@ nlohmann::json parameters_json(const std::vector<ParameterRange> &names, const s
   return j;
 }
 
+// What a cached run depends on besides the parameters: the scene file's text and how it is measured.
+// (Files the scene names, such as a particle CSV, are not included.)
+std::string run_key(const BulkTest &test) {
+  std::ifstream in(test.scene, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  return fmt::format("{:016x}/{}/{}", std::hash<std::string>{}(text),
+                     test.measure == Measure::heap_angle ? "heap_angle" : "drum_angle", test.plate_z);
+}
+
 AngleFit fit_from(const nlohmann::json &j) {
   AngleFit a;
   a.angle_deg = j.at("angle_deg");
@@ -36,10 +45,11 @@ BulkResult run_bulk_test(const BulkTest &test, const std::vector<ParameterRange>
                          const std::vector<double> &values, const std::filesystem::path &record,
                          PluginRegistry &registry) {
   const nlohmann::json params = parameters_json(names, values);
+  const std::string key = run_key(test);
   if (std::filesystem::exists(record)) {
     std::ifstream in(record);
     const auto j = nlohmann::json::parse(in, nullptr, false);
-    if (!j.is_discarded() && j.value("scene", "") == test.scene.string() &&
+    if (!j.is_discarded() && j.value("scene", "") == test.scene.string() && j.value("key", "") == key &&
         j.value("parameters", nlohmann::json()) == params) {
       BulkResult r;
       r.angle = fit_from(j);
@@ -78,6 +88,7 @@ BulkResult run_bulk_test(const BulkTest &test, const std::vector<ParameterRange>
   r.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const nlohmann::json j = {{"test", test.name},
                             {"scene", test.scene.string()},
+                            {"key", key},
                             {"parameters", params},
                             {"angle_deg", r.angle.angle_deg},
                             {"spread_deg", r.angle.spread_deg},
