@@ -47,5 +47,5 @@ target_link_libraries(test_workflow_mutation PRIVATE yaml-cpp)
 # The example scenes (examples/scenes/) run by `spreadmap simulate` against their closed forms.
 spreadmap_workflow_test(scenes SOURCES ${CMAKE_CURRENT_LIST_DIR}/scenes_test.cpp TIMEOUT 300)
 target_link_libraries(test_workflow_scenes PRIVATE spreadmap_workflow)  # calibrate's heap_angle
-# `spreadmap calibrate`: a friction round trip on the example drum, and bad calibration files.
+# `spreadmap calibrate` on a small drum: kept runs, a changed scene, refusals (the round trip: integration/).
 spreadmap_workflow_test(calibrate SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibrate_test.cpp TIMEOUT 300)
