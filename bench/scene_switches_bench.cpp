@@ -106,16 +106,17 @@ Outcome spread(const sm::Scene &scene, sm::PluginRegistry &registry, const sm::e
   auto &sim = run->sim;
   if (v.force_rotation) sim.force_rotation(true);
   if (v.idle_walls) {
-    const sm::engine::ContactLaw law = run->plugins.law(run->plugins.substrate);
+    const sm::PluginInstance &substrate = run->built->wall_laws.front();  // the substrate's law
+    const sm::engine::ContactLaw law{substrate.ops<sm::sm_contact_ops_v1>(), substrate.get()};
     // 1 mm outside the domain's top and back faces: nothing inside can reach them
     const double h = scene.domain.height;
     sim.add_plane_wall({{0, 0, h + 1e-3}, {0, 0, -1}, {0, 0, 0}, law, true, "ceiling"});
     sim.add_plane_wall({{-1e-3, 0, 0}, {1, 0, 0}, {0, 0, 0}, law, true, "back wall"});
   }
-  const auto spreader = run->plugins.spreader_description();
+  const auto spreader = run->spreader.description();
   const double duration = spreader.duration + scene.time.relax;
   const auto t0 = std::chrono::steady_clock::now();
-  sm::run_spreading(sim, run->plugins, scene, duration);
+  sm::run_spreading(sim, run->spreader, scene, duration);
   Outcome o;
   o.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto &c = sim.counters();

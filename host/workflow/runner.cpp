@@ -17,6 +17,7 @@ std::unique_ptr<Stage> make_stage(const std::string &kind) {
   if (kind == "train") return make_train_stage();
   if (kind == "map") return make_map_stage();
   if (kind == "tradeoff") return make_tradeoff_stage();
+  if (kind == "calibrate") return make_calibrate_stage();
   throw InputError("unknown stage '" + kind + "'");
 }
 
@@ -61,18 +62,22 @@ int run_workflow(const fs::path &file, const RunOptions &given, PluginRegistry &
       m["scene"] = v.scene ? to_json(*v.scene) : nlohmann::json();
     });
   spdlog::info("run directory: {}", run.root().string());
-  const Scene none;  // a workflow without a scene has no stage that reads one
-  StageContext ctx{v.wf, v.scene ? *v.scene : none, run, registry, options};
+  Scene scene = v.scene ? *v.scene : Scene{};  // a workflow without a scene has no stage that reads one
+  StageContext ctx{v.wf, scene, run, registry, options};
   for (std::size_t i = 0; i < v.stages.size(); ++i) {
     const std::string kind = v.wf.stages[i].kind;
     bool selected = options.only.empty();
     for (const auto &o : options.only) selected |= iequals(o, kind);
-    if (!selected) continue;
+    if (!selected) {
+      v.stages[i]->adjust_scene(scene, run);
+      continue;
+    }
     if (kind != "simulate") options.executor->release();  // the later stages run here alone
     spdlog::info("stage {}: {}", i + 1, kind);
     const auto t0 = std::chrono::steady_clock::now();
     const std::string start = RunDirectory::now_iso();
     v.stages[i]->run(ctx);
+    v.stages[i]->adjust_scene(scene, run);
     if (!options.executor->runs_later_stages()) break;  // they wait for the cases in a job
     if (!options.records_manifest()) continue;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -49,6 +49,9 @@ class Stage {
   virtual void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                         Diagnostics &diag) = 0;
   virtual void run(StageContext &ctx) = 0;
+  // Before the later stages run (whether this one ran now or before): what this stage's result
+  // changes in the scene they see. Only calibrate changes it (its calibrated contact parameters).
+  virtual void adjust_scene(Scene &, const RunDirectory &) {}
 };
 
 std::unique_ptr<Stage> make_simulate_stage();
@@ -56,6 +59,7 @@ std::unique_ptr<Stage> make_characterise_stage();
 std::unique_ptr<Stage> make_train_stage();
 std::unique_ptr<Stage> make_map_stage();
 std::unique_ptr<Stage> make_tradeoff_stage();
+std::unique_ptr<Stage> make_calibrate_stage();
 std::unique_ptr<Stage> make_stage(const std::string &kind);
 
 // The whole workflow: load, validate everything (scene, every stage), then run the selected

@@ -40,7 +40,7 @@ YAML::Node load_yaml(const fs::path &file);
 Workflow load_workflow(const fs::path &file);
 
 inline const std::vector<std::string> &stage_kinds() {
-  static const std::vector<std::string> kinds = {"simulate", "characterise", "train", "map", "tradeoff"};
+  static const std::vector<std::string> kinds = {"calibrate", "simulate", "characterise", "train", "map", "tradeoff"};
   return kinds;
 }
 

@@ -93,6 +93,61 @@ TEST_F(Calibrate, RunsAreKeptUntilTheSceneChanges) {
   EXPECT_NE(refused.err.find("widen the ranges"), std::string::npos) << refused.err;
 }
 
+// The calibrate stage runs a calibration file in a workflow and, with apply: true, hands the
+// calibrated friction to the later stages: the case's scene carries it, the substrate keeps its own.
+TEST_F(Calibrate, StageAppliesTheCalibratedFrictionToTheLaterStages) {
+  small_drum("31 deg");
+  const fs::path workflow = dir_ / "wf.yaml";
+  auto write_workflow = [&](const std::string &calibrate) {
+    std::ofstream(workflow) << "version: 1\nname: calibrated\nscene:\n  preset: quick\n  threads: 1\n"
+                               "  domain: {length: 20 mm}\n"
+                               "  powder: {count: 300, heap_from: 6 mm, heap_to: 10 mm, settle_time: 0.02 s}\n"
+                               "  spreader: {use: roller, travel: 8 mm}\n"
+                               "  contact: {use: hooke_slider, friction: 0.9}\n"
+                               "  substrate: {friction: 0.7}\n"
+                               "stages:\n"
+                            << calibrate
+                            << "  - simulate:\n      render: false\n"
+                               "      design: {type: list, cases: [{U: 100 mm/s}]}\n";
+  };
+  write_workflow("  - calibrate: {file: small_drum_friction.yaml, apply: true}\n");
+  const fs::path out = dir_ / "out";
+  const auto r = t::run({{"run", workflow.string(), "--out", out.string()}, {}, {{"OMP_NUM_THREADS", "2"}}, {}});
+  ASSERT_EQ(r.exit_code, 0) << r.describe();
+  const auto calibrated = read_json(out / "calibrate" / "calibration.json");
+  const double best = calibrated["parameters"]["friction"]["best"];
+  EXPECT_GT(best, 0.2);
+  EXPECT_LT(best, 0.8);
+  const auto scene = read_json(out / "cases" / "c000" / "scene.json");
+  EXPECT_EQ(scene["contact"]["params"]["friction"].get<double>(), best);  // exactly the calibrated value
+  EXPECT_EQ(scene["substrate"]["law"]["friction"].get<double>(), 0.7);
+
+  // --only simulate after it: the calibrated value still applies (read back from calibrate/), and
+  // the case is kept, not recomputed.
+  const auto again = t::run(
+      {{"run", workflow.string(), "--out", out.string(), "--only", "simulate"}, {}, {{"OMP_NUM_THREADS", "2"}}, {}});
+  ASSERT_EQ(again.exit_code, 0) << again.describe();
+  EXPECT_EQ(read_json(out / "cases" / "c000" / "scene.json")["contact"]["params"]["friction"].get<double>(), best);
+
+  // apply to another law than the calibration's, and a misspelt key: refused
+  write_workflow("  - calibrate: {file: small_drum_friction.yaml, apply: true}\n");
+  {
+    std::ifstream in(workflow);
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    text = std::regex_replace(text, std::regex("use: hooke_slider, friction: 0.9"), "use: hertz_mindlin");
+    std::ofstream(workflow) << text;
+  }
+  const auto other_law = t::run({{"validate", workflow.string()}, {}, {}, {}});
+  EXPECT_EQ(other_law.exit_code, 2) << other_law.describe();
+  EXPECT_NE(other_law.err.find("calibrate.apply: the scene's contact law is hertz_mindlin"), std::string::npos)
+      << other_law.err;
+  write_workflow("  - calibrate: {file: small_drum_friction.yaml, aply: true}\n");
+  const auto typo = t::run({{"validate", workflow.string()}, {}, {}, {}});
+  EXPECT_EQ(typo.exit_code, 2) << typo.describe();
+  EXPECT_NE(typo.err.find("wf.yaml:12:"), std::string::npos) << typo.err;
+  EXPECT_NE(typo.err.find("did you mean 'apply'"), std::string::npos) << typo.err;
+}
+
 TEST_F(Calibrate, BadFilesAreRefusedBeforeAnythingRuns) {
   struct Case {
     std::string file, where, text;

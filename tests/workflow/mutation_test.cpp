@@ -106,13 +106,19 @@ class Mutation : public ::testing::TestWithParam<fs::path> {};
 }  // namespace
 
 TEST_P(Mutation, EveryMutantGetsACleanAnswer) {
-  const fs::path dir = fs::temp_directory_path() / ("spreadmap_mutation_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const fs::path file = dir / GetParam().filename();
-  // scene files a workflow names (and particle files a scene names) are relative to it
+  const fs::path source = SPREADMAP_SOURCE_DIR,
+                 dir = fs::temp_directory_path() / ("spreadmap_mutation_" + std::to_string(::getpid()));
+  // The mutant sits where the original does relative to the project's root (workflows/, examples/scenes/),
+  // beside copies of its folder's other files (particle CSVs); the project's other top folders are
+  // linked in, so that a path such as ../examples/calibration/... resolves as it does for the original.
+  const fs::path home = dir / fs::relative(GetParam().parent_path(), source);
+  fs::create_directories(home);
+  for (const char *top : {"examples", "workflows"})
+    if (!fs::exists(dir / top)) fs::create_directory_symlink(source / top, dir / top);
+  const fs::path file = home / GetParam().filename();
   for (const auto &e : fs::directory_iterator(GetParam().parent_path()))
     if (e.is_regular_file() && e.path().extension() != ".yaml")
-      fs::copy_file(e.path(), dir / e.path().filename(), fs::copy_options::overwrite_existing);
+      fs::copy_file(e.path(), home / e.path().filename(), fs::copy_options::overwrite_existing);
   std::size_t refused = 0;
   std::vector<std::string> accepted;
   for (const auto &m : mutants(GetParam())) {

@@ -1,9 +1,10 @@
 // The example scenes (examples/scenes/) through the real binary, `spreadmap simulate`, each checked
 // against what physics says of it: the rebound height of a dropped sphere (e^2 h), the momentum two
 // colliding spheres exchange ((1 + e) m_eq v_rel) and keep in total, the force the contact output
-// reports (the law's closed form in the written state), and the slope of a heap left by a lifted
-// cylinder (within the range such a powder shows). Also: the outputs ParaView opens (states.pvd
-// naming every state file), and bad scenes refused before anything runs.
+// reports (the law's closed form in the written state), the slope of a heap left by a lifted
+// cylinder (within the range such a powder shows) and the layer a roller wall leaves behind it.
+// Also: the outputs ParaView opens (states.pvd naming every state file), and bad scenes refused
+// before anything runs.
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -181,6 +182,43 @@ TEST_F(Scenes, LiftedCylinderLeavesAHeapAtItsAngleOfRepose) {
   }
 }
 
+TEST_F(Scenes, ARollerWallSpreadsALayerNoThickerThanItsGap) {
+  // examples/scenes/roller_spreading.yaml: 400 spheres of d = 200 um, a roller wall of R = 1 mm at a
+  // gap of 300 um travelling from x = 2 mm to 14 mm; the spreading scene a workflow's case builds.
+  const double d = 200e-6, gap = 300e-6, trailing_edge = 13e-3;
+  const std::size_t n = simulate("roller_spreading.yaml");
+  ASSERT_EQ(n, 10u);
+  const auto rows = particles(n - 1);
+  std::ifstream in(dir_ / "out" / "summary.json");
+  const auto removed = nlohmann::json::parse(in)["removed"].get<std::size_t>();
+  EXPECT_EQ(rows.size() + removed, 400u);  // every sphere is in the domain or counted as having left it
+  double top = 0, solid = 0;
+  std::size_t behind = 0, ahead = 0;
+  for (const auto &r : rows) {
+    const double x = r.at("x"), radius = r.at("radius");
+    if (x > trailing_edge) ++ahead;
+    if (x < 3e-3 || x > trailing_edge) continue;
+    ++behind;
+    top = std::max(top, r.at("z") + radius);
+    if (x > 4e-3 && x < 12e-3) solid += 4.0 / 3.0 * std::numbers::pi * radius * radius * radius;
+  }
+  const double thickness = solid / (8e-3 * 1e-3);  // solid volume over the strip's area from 4 to 12 mm
+  std::printf(
+      "behind the roller: %zu spheres, highest top %.1f um (gap %.0f um), solid thickness %.1f um; %zu "
+      "pushed ahead, %zu left the domain\n",
+      behind, top * 1e6, gap * 1e6, thickness * 1e6, ahead, removed);
+  // Nothing passes the roller above its gap (a sphere resting a fraction of a diameter higher, on
+  // others it was squeezed between, is all there is room for) ...
+  EXPECT_GT(top, d);
+  EXPECT_LT(top, gap + 0.25 * d);
+  // ... the layer holds less solid than the gap filled at random close packing (0.64), and
+  // something: it is a layer (0.35 of the gap measured), not a bare plate ...
+  EXPECT_LT(thickness, 0.64 * gap);
+  EXPECT_GT(thickness, 0.2 * gap);
+  // ... and the roller pushes the rest of the heap ahead of it.
+  EXPECT_GT(ahead, 20u);
+}
+
 namespace {
 
 // A scene around a particle file `csv` (two 1 mm spheres by default) and extra YAML lines.
@@ -242,6 +280,16 @@ TEST_F(BadScenes, AreRefusedBeforeAnythingRunsWithTheFileLineOrKey) {
   refused(s, yaml + ":7:1: gravty", "did you mean 'gravity'");
   s.extra = "gravity: [0, 0, -9.81 m/s]\n";
   refused(s, "gravity[2]", "m/s^2");
+  s.extra = "";
+  // spreader walls: the plugin named and checked by its own schema, no geometry keys of other walls
+  s.walls = "walls:\n  - {type: spreader}\n";
+  refused(s, yaml + ":7:", "walls[0].spreader: required value missing");
+  s.walls = "walls:\n  - {type: spreader, spreader: {use: rollr}}\n";
+  refused(s, "walls[0].spreader.use", "roller");
+  s.walls = "walls:\n  - {type: spreader, spreader: {use: roller, gap: -1 mm}}\n";
+  refused(s, "walls[0].spreader.gap", "outside [0, 0.1] m");
+  s.walls = "walls:\n  - {type: spreader, normal: [0, 0, 1], spreader: {use: blade}}\n";
+  refused(s, "walls[0].normal", "not a key of a spreader wall");
 }
 
 // A scene written by the test: the YAML after `version: 1` and the particle CSV.

@@ -63,7 +63,7 @@ BulkResult run_bulk_test(const BulkTest &test, const std::vector<ParameterRange>
   auto loaded = scene_file::load_scene(test.scene, registry);
   for (std::size_t k = 0; k < names.size(); ++k) loaded.scene.pair_law[names[k].name] = values[k];
   const auto t0 = std::chrono::steady_clock::now();
-  auto run = scene_file::build_scene(loaded, registry);
+  auto run = scene_file::build_scene<double>(loaded, registry);
   const auto keep_going = [](const engine::Simulation<double> &) { return !stop_requested(); };
   // A heap is measured once it has come to rest, at the end; a drum's surface keeps moving, so it is
   // measured at every output time of the run's second half and the fits are pooled.

@@ -107,6 +107,7 @@ CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &regi
     c.tests.push_back(std::move(t));
   }
 
+  if (!laws.empty()) c.law = laws.front().plugin->descriptor->name;
   // parameters: keys of every test's contact law, ranges inside the law's own
   YAML::Node params = root["parameters"];
   if (!params || !params.IsMap() || params.size() == 0)

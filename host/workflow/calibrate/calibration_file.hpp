@@ -31,6 +31,7 @@ struct BulkTest {
 struct CalibrationFile {
   fs::path file;
   std::string name;
+  std::string law;                         // the contact plugin of the tests' scenes (the first test's)
   std::vector<ParameterRange> parameters;  // keys of the scenes' contact law
   int levels = 3;                          // full factorial: levels^parameters runs per test
   std::vector<BulkTest> tests;

@@ -90,7 +90,7 @@ int cmd_simulate(int argc, char **argv) {
 #ifdef _OPENMP
   if (scene.run.threads > 0) omp_set_num_threads(static_cast<int>(scene.run.threads));
 #endif
-  auto run = scene_file::build_scene(loaded, registry);
+  auto run = scene_file::build_scene<double>(loaded, registry);
   auto &sim = *run->sim;
   const engine::ContactLaw pair_law{run->pair.ops<sm_contact_ops_v1>(), run->pair.get()};
   write_atomic(dir / "scene.json", resolved(scene, sim.size()).dump(2) + "\n");

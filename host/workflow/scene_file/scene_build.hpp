@@ -1,6 +1,8 @@
-// From a scene file to a running engine::Simulation: the file read and checked (load_scene), the
-// contact plugin bound once per law (particle-particle, then one per wall), the walls and particles
-// added. The Simulation points into the bound laws and the cylinder geometries, which live beside it.
+// From a scene (a scene file, or a workflow's spreading case: workflow/simulate/case_setup.hpp) to
+// a running engine::Simulation: the contact plugin bound once per law (particle-particle, then one
+// per wall), the spreader plugins bound, the particles and the walls added, the step backend
+// chosen. The Simulation points into the bound plugins and the cylinder geometries, which live
+// beside it.
 #pragma once
 #include <deque>
 #include <memory>
@@ -9,6 +11,8 @@
 #include "engine/simulation.hpp"
 #include "workflow/scene_file/scene_particles.hpp"
 #include "workflow/scene_file/scene_spec.hpp"
+
+#include <spreadmap/geometry.hpp>
 
 namespace spreadmap::scene_file {
 
@@ -28,14 +32,25 @@ struct DelayedMotion {
   double start;
 };
 
-struct SceneRun {
+// A bound spreader plugin: what it says of itself and where it is at a time.
+struct BoundSpreader {
+  const PluginInstance *instance = nullptr;
+  double time_offset = 0;
+  const sm_spreader_ops_v2 &ops() const { return *instance->ops<sm_spreader_ops_v2>(); }
+  sm_spreader_description_v2 description() const;
+  sm_spreader_pose_v2 pose(double t) const;  // at the scene's time t
+};
+
+template <class Real> struct SceneRun {
   PluginInstance pair;
   std::deque<PluginInstance> wall_laws;  // one per wall, in the file's order (stable addresses)
+  std::deque<PluginInstance> spreader_plugins;
   std::deque<CylinderWall> cylinders;    // the geometries' `self`
-  std::unique_ptr<engine::Simulation<double>> sim;
+  std::vector<BoundSpreader> spreaders;  // the spreader walls, in the file's order
+  std::unique_ptr<engine::Simulation<Real>> sim;
   std::vector<DelayedMotion> delayed;
 };
 
-std::unique_ptr<SceneRun> build_scene(const LoadedScene &loaded, PluginRegistry &registry);
+template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedScene &loaded, PluginRegistry &registry);
 
 }  // namespace spreadmap::scene_file

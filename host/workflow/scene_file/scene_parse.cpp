@@ -22,7 +22,7 @@ constexpr sm_param_v1 top_params[] = {
     sm::table("gravity", "gravitational acceleration [m/s^2]: a vector [gx, gy, gz] or off"),
     sm::table("contact", "the contact plugin (use: NAME) and its parameters, for particle-particle contacts"),
     sm::table("particles", "where the particles come from: file (CSV) or generate"),
-    sm::table("walls", "a list of walls: type plane, box or cylinder"),
+    sm::table("walls", "a list of walls: type plane, box, cylinder or spreader"),
     sm::table("run", "duration, time step, outputs"),
 };
 
@@ -52,7 +52,8 @@ constexpr sm_param_v1 generate_params[] = {
 };
 
 constexpr sm_param_v1 wall_params[] = {
-    sm::enumeration("type", "plane|box|cylinder", "plane", "plane (infinite), box (six inward planes) or cylinder"),
+    sm::enumeration("type", "plane|box|cylinder|spreader", "plane",
+                    "plane (infinite), box (six inward planes), cylinder, or spreader (a spreader plugin)"),
     sm::text("name", "", "name in messages and the log"),
     sm::table("point", "plane: a point of the plane [m]"),
     sm::table("normal", "plane: normal pointing to the particles' side (any length > 0)"),
@@ -66,7 +67,9 @@ constexpr sm_param_v1 wall_params[] = {
     sm::boolean("inside", true, "cylinder: particles inside an open tube (true) or outside a solid cylinder"),
     sm::number("omega", "rad/s", -1e5, 1e5, 0, "cylinder: rotation rate about its axis (right-hand rule)"),
     sm::table("velocity", "translation velocity [m/s] (default 0)"),
-    sm::number("start", "s", 0, 1e6, 0, "the translation starts at this time (at rest before)"),
+    sm::number("start", "s", 0, 1e6, 0,
+               "the translation (a spreader: its travel) starts at this time (at rest before)"),
+    sm::table("spreader", "spreader: the plugin (use: NAME) and its parameters, e.g. {use: roller, diameter: 10 mm}"),
 };
 
 constexpr sm_param_v1 run_params[] = {
@@ -184,6 +187,27 @@ void read_gravity(const Reader &r, const YAML::Node &node, SceneFile &s) {
   if (auto g = r.vector(node, "gravity", "m/s^2", "gravitational acceleration", -1e4, 1e4)) s.gravity = *g;
 }
 
+// The plugin a section names with `use:` (the section `key`, e.g. contact or walls[1].spreader), or
+// null with the problem reported: `use` missing (and a misspelt key that is likely it), or no such plugin.
+const LoadedPlugin *named_plugin(const Reader &r, const YAML::Node &node, const std::string &kind,
+                                 const std::string &key, PluginRegistry &registry, const std::string &fix) {
+  if (!node["use"] || !node["use"].IsScalar()) {
+    r.diag.error(r.at(node), key + ".use", "required value missing", fix);
+    for (const auto &kv : node)  // a misspelt `use` is the likely cause: say which key it is
+      if (closest(kv.first.as<std::string>(), {"use"}) == "use" && kv.first.as<std::string>() != "use")
+        r.diag.error(r.at(kv.first), key + "." + kv.first.as<std::string>(), "unknown key", "did you mean 'use'?");
+    return nullptr;
+  }
+  try {
+    return &registry.get(kind, node["use"].Scalar());
+  } catch (const Error &e) {
+    std::string text = e.what();
+    if (text.rfind("error: ", 0) == 0) text.erase(0, 7);
+    r.diag.error(r.at(node["use"]), key + ".use", text);
+    return nullptr;
+  }
+}
+
 // The contact law's schema, or null when the plugin cannot be loaded (reported).
 const LoadedPlugin *read_contact(const Reader &r, const YAML::Node &node, PluginRegistry &registry, SceneFile &s) {
   if (!node || !node.IsMap()) {
@@ -191,23 +215,10 @@ const LoadedPlugin *read_contact(const Reader &r, const YAML::Node &node, Plugin
                  "add contact: {use: hooke_slider, ...}; spreadmap plugins --kind contact lists the laws");
     return nullptr;
   }
-  if (!node["use"] || !node["use"].IsScalar()) {
-    r.diag.error(r.at(node), "contact.use", "required value missing", "name the contact law: use: hooke_slider");
-    for (const auto &kv : node)  // a misspelt `use` is the likely cause: say which key it is
-      if (closest(kv.first.as<std::string>(), {"use"}) == "use" && kv.first.as<std::string>() != "use")
-        r.diag.error(r.at(kv.first), "contact." + kv.first.as<std::string>(), "unknown key", "did you mean 'use'?");
-    return nullptr;
-  }
+  const LoadedPlugin *law =
+      named_plugin(r, node, "contact", "contact", registry, "name the contact law: use: hooke_slider");
+  if (!law) return nullptr;
   s.law = node["use"].Scalar();
-  const LoadedPlugin *law = nullptr;
-  try {
-    law = &registry.get("contact", s.law);
-  } catch (const Error &e) {
-    std::string text = e.what();
-    if (text.rfind("error: ", 0) == 0) text.erase(0, 7);
-    r.diag.error(r.at(node["use"]), "contact.use", text);
-    return nullptr;
-  }
   s.pair_law = validate_params(SchemaView::of(*law->descriptor), node, r.file, "contact", r.diag, {"use"});
   return law;
 }
@@ -263,12 +274,39 @@ void read_particles(const Reader &r, const YAML::Node &node, const fs::path &dir
                  "add density: 2500 kg/m^3 (for example) to the particles section");
 }
 
+// A spreader wall's plugin and its parameters (`spreader: {use: roller, ...}`), checked by the plugin's
+// schema and its own cross-checks.
+void read_spreader(const Reader &r, const YAML::Node &wall, const std::string &path, PluginRegistry &registry,
+                   SpreaderWall &out) {
+  const std::string at = path + ".spreader";
+  const YAML::Node node = wall["spreader"];
+  const char *fix = "write spreader: {use: roller, diameter: 10 mm, ...}; spreadmap plugins --kind spreader lists them";
+  if (!node || !node.IsMap()) {
+    r.diag.error(r.at(node ? node : wall), at,
+                 node ? "expected a mapping naming the plugin: {use: NAME, ...}" : "required value missing", fix);
+    return;
+  }
+  const LoadedPlugin *plugin = named_plugin(r, node, "spreader", at, registry, fix);
+  if (!plugin) return;
+  out.use = node["use"].Scalar();
+  out.params = validate_params(SchemaView::of(*plugin->descriptor), node, r.file, at, r.diag, {"use"});
+  if (!r.diag.empty()) return;
+  try {
+    PluginInstance probe(*plugin, out.params.dump());
+  } catch (const PluginError &e) {
+    std::string text = e.what();
+    if (text.rfind("error: ", 0) == 0) text.erase(0, 7);
+    r.diag.error(r.at(node), at, text);
+  }
+}
+
 std::string wall_label(const WallSpec &w, std::size_t k) {
-  static const char *kinds[] = {"plane", "box", "cylinder"};
+  static const char *kinds[] = {"plane", "box", "cylinder", "spreader"};
   return w.name.empty() ? fmt::format("walls[{}] ({})", k, kinds[int(w.kind)]) : w.name;
 }
 
-void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law, SceneFile &s) {
+void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law, PluginRegistry &registry,
+                SceneFile &s) {
   if (!node) return;
   if (!node.IsSequence()) {
     r.diag.error(r.at(node), "walls", "expected a list of walls",
@@ -296,7 +334,10 @@ void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law
     const auto v = r.section(wall_params, std::size(wall_params), w, path, law_keys);
     if (!v.contains("type") || !v["type"].is_string()) continue;
     const std::string type = v["type"];
-    spec.kind = type == "box" ? WallKind::box : type == "cylinder" ? WallKind::cylinder : WallKind::plane;
+    spec.kind = type == "box"        ? WallKind::box
+                : type == "cylinder" ? WallKind::cylinder
+                : type == "spreader" ? WallKind::spreader
+                                     : WallKind::plane;
     if (v.contains("name") && v["name"].is_string()) spec.name = v["name"];
     if (v.contains("open_top") && v["open_top"].is_boolean()) spec.open_top = v["open_top"];
     if (v.contains("start") && v["start"].is_number()) spec.start = v["start"];
@@ -313,16 +354,22 @@ void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law
         if (w[key])
           r.diag.error(
               r.at(w[key]), path + "." + key, fmt::format("not a key of a {} wall", type),
-              "plane: point, normal; box: lo, hi, open_top; cylinder: base, axis, radius, height, inside, omega");
+              "plane: point, normal; box: lo, hi, open_top; cylinder: base, axis, radius, height, inside, omega; "
+              "spreader: spreader (its motion is the plugin's)");
     };
-    if (spec.kind == WallKind::plane) {
-      foreign({"lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega"});
+    if (spec.kind == WallKind::spreader) {
+      foreign({"point", "normal", "lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega",
+               "velocity"});
+      read_spreader(r, w, path, registry, spec.spreader);
+      spec.spreader.time_offset = -spec.start;  // the plugin's time 0 (its start) at `start`, at rest before
+    } else if (spec.kind == WallKind::plane) {
+      foreign({"lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
       if (need("point", "add point: [x, y, z] (m), a point of the plane"))
         if (auto p = r.vector(w["point"], path + ".point", "m", "a point of the plane")) spec.point = *p;
       if (need("normal", "add normal: [nx, ny, nz], pointing to the particles' side"))
         if (auto n = r.direction(w["normal"], path + ".normal", "normal into the particles' side")) spec.normal = *n;
     } else if (spec.kind == WallKind::box) {
-      foreign({"point", "normal", "base", "axis", "radius", "height", "inside", "omega"});
+      foreign({"point", "normal", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
       std::optional<Vec> lo, hi;
       if (need("lo", "add lo: [x, y, z] (m)")) lo = r.vector(w["lo"], path + ".lo", "m", "lower corner");
       if (need("hi", "add hi: [x, y, z] (m)")) hi = r.vector(w["hi"], path + ".hi", "m", "upper corner");
@@ -336,7 +383,7 @@ void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law
                          "make hi greater than lo along every axis");
       }
     } else {
-      foreign({"point", "normal", "lo", "hi", "open_top"});
+      foreign({"point", "normal", "lo", "hi", "open_top", "spreader"});
       CylinderWall &c = spec.cylinder;
       c = CylinderWall{{0, 0, 0}, {0, 0, 1}, 0, 0, {0, 0, 0}, 0, 0, true};
       if (need("base", "add base: [x, y, z] (m), the centre of its bottom end"))
@@ -439,7 +486,7 @@ std::optional<SceneFile> parse_scene(const fs::path &file, const YAML::Node &roo
   read_gravity(r, root["gravity"], s);
   const LoadedPlugin *law = read_contact(r, root["contact"], registry, s);
   read_particles(r, root["particles"], file.parent_path(), s);
-  read_walls(r, root["walls"], law, s);
+  read_walls(r, root["walls"], law, registry, s);
   read_run(r, root["run"], s);
   if (!diag.empty()) return std::nullopt;
   // the laws' own checks across their parameters (bind) run now, before any work starts

@@ -4,7 +4,8 @@
 
 namespace spreadmap::scene_file {
 
-bool advance_scene(SceneRun &run, double t, const engine::Simulation<double>::StepCallback &keep_going,
+template <class Real>
+bool advance_scene(SceneRun<Real> &run, double t, const typename engine::Simulation<Real>::StepCallback &keep_going,
                    std::uint64_t every) {
   auto &sim = *run.sim;
   std::vector<DelayedMotion> due;
@@ -17,5 +18,10 @@ bool advance_scene(SceneRun &run, double t, const engine::Simulation<double>::St
   }
   return sim.run_until(t, keep_going, every);
 }
+
+template bool advance_scene<double>(SceneRun<double> &, double, const engine::Simulation<double>::StepCallback &,
+                                    std::uint64_t);
+template bool advance_scene<float>(SceneRun<float> &, double, const engine::Simulation<float>::StepCallback &,
+                                   std::uint64_t);
 
 }  // namespace spreadmap::scene_file

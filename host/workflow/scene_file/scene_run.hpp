@@ -7,7 +7,8 @@
 namespace spreadmap::scene_file {
 
 // Returns false when keep_going asked to stop (checked every `every` steps).
-bool advance_scene(SceneRun &run, double t, const engine::Simulation<double>::StepCallback &keep_going = {},
-                   std::uint64_t every = 100);
+template <class Real>
+bool advance_scene(SceneRun<Real> &run, double t,
+                   const typename engine::Simulation<Real>::StepCallback &keep_going = {}, std::uint64_t every = 100);
 
 }  // namespace spreadmap::scene_file

@@ -16,7 +16,14 @@ namespace spreadmap::scene_file {
 namespace fs = std::filesystem;
 using Vec = std::array<double, 3>;
 
-enum class WallKind { plane, box, cylinder };
+enum class WallKind { plane, box, cylinder, spreader };
+
+// A spreader plugin as a wall (`type: spreader`): a roller, a blade ... moving as it describes itself.
+struct SpreaderWall {
+  std::string use;                                   // the spreader plugin
+  nlohmann::json params = nlohmann::json::object();  // its parameters (validated, SI)
+  double time_offset = 0;  // the plugin sees time t + time_offset (< 0: still at rest before its start)
+};
 
 struct WallSpec {
   WallKind kind = WallKind::plane;
@@ -27,6 +34,7 @@ struct WallSpec {
   Vec lo{0, 0, 0}, hi{0, 0, 0};         // box: particles live inside
   bool open_top = false;                // box: no lid (the plane at hi.z is left out)
   CylinderWall cylinder{};              // cylinder
+  SpreaderWall spreader;                // spreader
   Vec velocity{0, 0, 0};                // planes and boxes translate; a cylinder's velocity is in `cylinder`
   double start = 0;                     // the motion starts at this time [s]
   nlohmann::json law;                   // the contact law's parameters for this wall (SI)
@@ -59,7 +67,11 @@ struct RunSpec {
   bool particles_csv = true;
   bool contacts_csv = false;
   double overlap_limit = 0.1;
+  double skin = 0;  // [m], 0 = the engine's automatic skin
+  bool sleep = false;
+  double sleep_speed = 0;  // [m/s]: below it a particle may fall asleep (engine/settings.hpp)
   long threads = 0;
+  bool log_engine = true;  // the engine's messages at info (one scene) or at debug (a workflow's many cases)
 };
 
 struct SceneFile {
@@ -72,6 +84,7 @@ struct SceneFile {
   std::vector<WallSpec> walls;
   ParticleSource particles;
   RunSpec run;
+  std::string backend = "cpu";  // cpu | cuda | auto: where the steps run (a workflow's scene.backend)
 };
 
 // Is this YAML document a scene file (rather than a workflow)? A workflow has `stages` or `scene`

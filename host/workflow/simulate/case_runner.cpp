@@ -57,7 +57,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   ParticleSet heap = settled_heap<Real>(scene, reg, req);
   const auto run = make_spreading_run<Real>(scene, reg, heap, req.dir / "scene.json");
   auto &sim = run->sim;
-  const auto &plugins = run->plugins;
+  const auto &spreader_plugin = run->spreader;
 
   const fs::path checkpoint = req.dir / "checkpoint.bin";
   const std::string hash = case_hash(scene);
@@ -76,7 +76,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
       return spread<Real>(req, reg);
     }
   }
-  const auto spreader = plugins.spreader_description();
+  const auto spreader = spreader_plugin.description();
   const double duration = spreader.duration + scene.time.relax;
   const double interval = scene.time.checkpoint_interval;
   const int snapshots = static_cast<int>(scene.time.snapshots);
@@ -91,7 +91,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   };
   std::vector<engine::SeriesEntry> series;
   nlohmann::json series_record = nlohmann::json::array();  // with the spreader's pose, for frames
-  auto pose_at = [&](double t) { return to_json(plugins.spreader_pose(t)); };
+  auto pose_at = [&](double t) { return to_json(spreader_plugin.pose(t)); };
   int next_snapshot = 1;
   // resumed: the snapshots written before the checkpoint stay in the series (their time is in the file)
   while (snapshots > 0 && next_snapshot <= snapshots && sim.time() >= duration * next_snapshot / (snapshots + 1)) {
@@ -105,7 +105,7 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   }
   // one snapshot time per interval; callbacks every 100 steps are cheap against the step cost
   bool ok = run_spreading(
-      sim, plugins, scene, duration,
+      sim, spreader_plugin, scene, duration,
       [&](const engine::Simulation<Real> &s) {
         const auto now = std::chrono::steady_clock::now();
         if (req.progress) req.progress(0.1 + 0.9 * s.time() / duration, "");

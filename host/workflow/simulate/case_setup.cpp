@@ -1,10 +1,5 @@
 #include "workflow/simulate/case_setup.hpp"
 
-#ifdef SPREADMAP_WITH_CUDA
-#include "cuda/backend.hpp"
-#include "cuda/resident_stepper.hpp"
-#endif
-
 #include <spdlog/spdlog.h>
 #include <spreadmap/contact.hpp>
 #include <spreadmap/geometry.hpp>
@@ -20,14 +15,9 @@ namespace spreadmap {
 
 using engine::ParticleSet;
 
-CasePlugins::CasePlugins(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file) {
-  const auto &law = reg.get("contact", scene.contact.use);
-  const auto &geo = reg.get("spreader", scene.spreader.use);
-  const std::string at = scene_file.string() + ": ";
-  pair = PluginInstance(law, scene.contact.params.dump(), at + "scene.contact");
-  substrate = PluginInstance(law, scene.substrate.law.dump(), at + "scene.substrate");
-  spreader_law = PluginInstance(law, scene.spreader.law.dump(), at + "scene.spreader");
-  spreader = PluginInstance(geo, scene.spreader.params.dump(), at + "scene.spreader");
+PluginInstance bind_spreader(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file) {
+  return PluginInstance(reg.get("spreader", scene.spreader.use), scene.spreader.params.dump(),
+                        scene_file.string() + ": scene.spreader");
 }
 
 nlohmann::json to_json(const sm_spreader_description_v2 &d) {
@@ -52,58 +42,61 @@ nlohmann::json to_json(const sm_spreader_pose_v2 &p) {
           {"x_max", p.x_max}};
 }
 
-engine::ContactLaw CasePlugins::law(const PluginInstance &i) const { return {i.ops<sm_contact_ops_v1>(), i.get()}; }
-
-sm_spreader_description_v2 CasePlugins::spreader_description() const {
-  sm_spreader_description_v2 d{};
-  spreader_ops().describe(spreader.get(), &d);
-  return d;
-}
-
-sm_spreader_pose_v2 CasePlugins::spreader_pose(double t) const {
-  sm_spreader_pose_v2 pose{};
-  spreader_ops().pose(spreader.get(), t, &pose);
-  return pose;
-}
-
 sm_spreader_description_v2 describe_spreader(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file) {
-  const auto &geo = reg.get("spreader", scene.spreader.use);
-  const PluginInstance spreader(geo, scene.spreader.params.dump(), scene_file.string() + ": scene.spreader");
-  sm_spreader_description_v2 d{};
-  spreader.ops<sm_spreader_ops_v2>()->describe(spreader.get(), &d);
-  return d;
+  const PluginInstance spreader = bind_spreader(scene, reg, scene_file);
+  return scene_file::BoundSpreader{&spreader, 0.0}.description();
 }
 
 namespace {
-// Adds a plane wall whose law is the plugin `law`, and keeps the plugin: the GPU backend needs the
-// kernels of every plane's law, in the order the walls were added.
-template <class Real>
-void add_plane(engine::Simulation<Real> &sim, std::vector<const PluginInstance *> &plane_laws,
-               const CasePlugins &plugins, const std::array<double, 3> &point, const std::array<double, 3> &normal,
-               const PluginInstance &law, const std::string &name) {
-  sim.add_plane_wall({point, normal, {0, 0, 0}, plugins.law(law), true, name});
-  plane_laws.push_back(&law);
+
+using scene_file::WallKind;
+using scene_file::WallSpec;
+
+WallSpec plane(const std::string &name, const std::string &key, const std::array<double, 3> &point,
+               const std::array<double, 3> &normal, const nlohmann::json &law) {
+  WallSpec w;
+  w.kind = WallKind::plane;
+  w.name = name;
+  w.key_path = key;
+  w.point = point;
+  w.normal = normal;
+  w.law = law;
+  return w;
 }
 
-// With scene.backend: cuda (or auto on a machine with a GPU), the simulation steps on the GPU: the
-// kernels of its pair law, of each plane wall's law (plane_laws, from add_plane) and of the spreader
-// with its law.
-template <class Real>
-void attach_backend(engine::Simulation<Real> &sim, const Scene &scene, const CasePlugins &plugins,
-                    const std::vector<const PluginInstance *> &plane_laws) {
-#ifdef SPREADMAP_WITH_CUDA
-  std::string message;  // said once per run by the simulate stage
-  if (cuda::choose_backend(scene.backend, message) != cuda::Backend::cuda) return;
-  cuda::ResidentLaws laws;
-  laws.pair = cuda::contact_kernels(*plugins.pair.plugin());
-  for (const PluginInstance *law : plane_laws) laws.planes.push_back(cuda::contact_kernels(*law->plugin()));
-  laws.geometries.push_back(
-      {cuda::spreader_kernels(*plugins.spreader.plugin()), cuda::contact_kernels(*plugins.spreader_law.plugin())});
-  sim.set_backend(cuda::make_resident_stepper<Real>(sim, std::move(laws)));
-#else
-  (void)sim, (void)scene, (void)plugins, (void)plane_laws;
-#endif
+WallSpec spreader_wall(const Scene &scene, PluginRegistry &reg, double time_offset) {
+  WallSpec w;
+  w.kind = WallKind::spreader;
+  w.name = reg.get("spreader", scene.spreader.use).id();
+  w.key_path = "scene.spreader";
+  w.spreader = {scene.spreader.use, scene.spreader.params, time_offset};
+  w.law = scene.spreader.law;
+  return w;
 }
+
+// What every scene of a case shares: the domain, gravity, the laws and the engine's settings.
+scene_file::LoadedScene case_scene(const Scene &scene, const fs::path &scene_file) {
+  scene_file::LoadedScene l;
+  auto &s = l.scene;
+  s.file = scene_file;
+  s.name = "case";
+  s.domain = make_domain(scene);
+  s.gravity = {0, 0, -scene.gravity};
+  s.law = scene.contact.use;
+  s.pair_law = scene.contact.params;
+  s.particles.density = scene.powder.density;
+  const TimeSettings &t = scene.time;
+  s.run.dt = t.step;
+  s.run.safety = t.safety;
+  s.run.skin = t.skin;
+  s.run.overlap_limit = t.overlap_limit;
+  s.run.sleep = t.sleep;
+  s.run.sleep_speed = t.sleep_speed;
+  s.run.log_engine = false;  // a workflow runs many cases: the engine's messages at debug
+  s.backend = scene.backend;
+  return l;
+}
+
 }  // namespace
 
 engine::Domain make_domain(const Scene &scene) {
@@ -115,18 +108,11 @@ engine::Domain make_domain(const Scene &scene) {
   return dom;
 }
 
-engine::Settings make_settings(const Scene &scene, double dt) {
-  engine::Settings s;
-  const TimeSettings &t = scene.time;
-  s.dt = dt;
-  s.dt_safety = t.safety;
-  s.skin = t.skin;
-  s.overlap_limit = t.overlap_limit;
-  s.sleep = t.sleep;
-  s.sleep_speed = t.sleep_speed;
-  s.gravity = {0, 0, -scene.gravity};
-  s.log = [](const std::string &m) { spdlog::debug("{}", m); };
-  return s;
+scene_file::LoadedScene spreading_scene(const Scene &scene, const ParticleSet &heap, const fs::path &scene_file) {
+  auto l = case_scene(scene, scene_file);
+  l.scene.walls = {plane("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, scene.substrate.law)};
+  l.particles.set = heap;
+  return l;
 }
 
 template <class Real>
@@ -134,7 +120,8 @@ ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::stri
                         const std::function<void(double)> &progress) {
   const Powder &powder = scene.powder;
   const auto dom = make_domain(scene);
-  CasePlugins plugins(scene, reg, scene_file);
+  const PluginInstance spreader = bind_spreader(scene, reg, scene_file);
+  const scene_file::BoundSpreader at_rest{&spreader, 0.0};
   const double t_settle = powder.settle_time, v_rest = powder.settle_speed;
   // The spreader rests at its start for t < 0: while the heap settles it sees times before that.
   const double rest_shift = -(t_settle + 1.0);
@@ -154,26 +141,25 @@ ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::stri
   const double clearance = 0.05 * dmax;
   spec.excluded = [&](double x, double y, double z, double r) {
     const double centre[3] = {x, y, z};
-    return plugins.spreader_ops().touches(plugins.spreader.get(), rest_shift, centre, r + clearance) != 0;
+    return at_rest.ops().touches(spreader.get(), rest_shift, centre, r + clearance) != 0;
   };
   const scene::Heap heap = scene::insert_heap(spec);
   spdlog::info("{}: heap of {} spheres inserted (top {:.2f} mm), settling {:.3g} s", label, heap.size(), heap.top * 1e3,
                t_settle);
 
-  engine::Simulation<Real> sim(dom, plugins.law(plugins.pair), make_settings(scene, scene.time.step));
-  ParticleSet set;
-  set.x = heap.x;
-  set.y = heap.y;
-  set.z = heap.z;
-  set.radius = heap.r;
-  sim.add_particles(set, powder.density);
-  std::vector<const PluginInstance *> plane_laws;
-  add_plane(sim, plane_laws, plugins, {0, 0, 0}, {0, 0, 1}, plugins.substrate, "substrate");
-  add_plane(sim, plane_laws, plugins, {spec.region.lo[0], 0, 0}, {1, 0, 0}, plugins.spreader_law, "heap back wall");
-  add_plane(sim, plane_laws, plugins, {spec.region.hi[0], 0, 0}, {-1, 0, 0}, plugins.spreader_law, "heap front wall");
-  sim.add_geometry({&plugins.spreader_ops(), plugins.spreader.get(), plugins.law(plugins.spreader_law),
-                    plugins.spreader.plugin()->id(), rest_shift});
-  attach_backend(sim, scene, plugins, plane_laws);
+  // The settling scene: the heap between two temporary walls (the spreader's law), the spreader at rest.
+  auto settling = case_scene(scene, scene_file);
+  settling.particles.set.x = heap.x;
+  settling.particles.set.y = heap.y;
+  settling.particles.set.z = heap.z;
+  settling.particles.set.radius = heap.r;
+  const auto &wall_law = scene.spreader.law;
+  settling.scene.walls = {plane("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, scene.substrate.law),
+                          plane("heap back wall", "scene.spreader", {spec.region.lo[0], 0, 0}, {1, 0, 0}, wall_law),
+                          plane("heap front wall", "scene.spreader", {spec.region.hi[0], 0, 0}, {-1, 0, 0}, wall_law),
+                          spreader_wall(scene, reg, rest_shift)};
+  const auto run = scene_file::build_scene<Real>(settling, reg);
+  auto &sim = *run->sim;
   const double min_time = 0.3 * t_settle;
   sim.run_until(
       t_settle,
@@ -199,28 +185,22 @@ ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::stri
 template <class Real>
 std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const Scene &scene, PluginRegistry &reg, const ParticleSet &heap,
                                                        const fs::path &scene_file) {
-  CasePlugins plugins(scene, reg, scene_file);
-  const engine::ContactLaw pair = plugins.law(plugins.pair);
-  auto run = std::unique_ptr<SpreadingRun<Real>>(new SpreadingRun<Real>{
-      std::move(plugins), engine::Simulation<Real>(make_domain(scene), pair, make_settings(scene, scene.time.step))});
-  auto &sim = run->sim;
-  const auto &p = run->plugins;
-  sim.add_particles(heap, scene.powder.density);
-  std::vector<const PluginInstance *> plane_laws;
-  add_plane(sim, plane_laws, p, {0, 0, 0}, {0, 0, 1}, p.substrate, "substrate");
-  sim.add_geometry({&p.spreader_ops(), p.spreader.get(), p.law(p.spreader_law), p.spreader.plugin()->id()});
-  attach_backend(sim, scene, p, plane_laws);
-  return run;
+  auto l = spreading_scene(scene, heap, scene_file);
+  l.scene.walls.push_back(spreader_wall(scene, reg, 0.0));
+  auto built = scene_file::build_scene<Real>(l, reg);
+  auto &sim = *built->sim;
+  const auto &spreader = built->spreaders.front();
+  return std::unique_ptr<SpreadingRun<Real>>(new SpreadingRun<Real>{std::move(built), sim, spreader});
 }
 
 template <class Real>
-bool run_spreading(engine::Simulation<Real> &sim, const CasePlugins &plugins, const Scene &scene, double t_end,
-                   const typename engine::Simulation<Real>::StepCallback &callback, std::uint64_t every) {
+bool run_spreading(engine::Simulation<Real> &sim, const scene_file::BoundSpreader &spreader, const Scene &scene,
+                   double t_end, const typename engine::Simulation<Real>::StepCallback &callback, std::uint64_t every) {
   const bool sleep = scene.time.sleep;
   const double behind = scene.time.sleep_behind;
   auto follow = [&] {
     if (!sleep) return;
-    sim.set_sleep_region(plugins.spreader_pose(sim.time()).x_min - behind);  // behind its trailing edge
+    sim.set_sleep_region(spreader.pose(sim.time()).x_min - behind);  // behind its trailing edge
   };
   follow();
   return sim.run_until(
@@ -242,9 +222,9 @@ template std::unique_ptr<SpreadingRun<double>> make_spreading_run<double>(const 
                                                                           const ParticleSet &, const fs::path &);
 template std::unique_ptr<SpreadingRun<float>> make_spreading_run<float>(const Scene &, PluginRegistry &,
                                                                         const ParticleSet &, const fs::path &);
-template bool run_spreading<double>(engine::Simulation<double> &, const CasePlugins &, const Scene &, double,
-                                    const engine::Simulation<double>::StepCallback &, std::uint64_t);
-template bool run_spreading<float>(engine::Simulation<float> &, const CasePlugins &, const Scene &, double,
-                                   const engine::Simulation<float>::StepCallback &, std::uint64_t);
+template bool run_spreading<double>(engine::Simulation<double> &, const scene_file::BoundSpreader &, const Scene &,
+                                    double, const engine::Simulation<double>::StepCallback &, std::uint64_t);
+template bool run_spreading<float>(engine::Simulation<float> &, const scene_file::BoundSpreader &, const Scene &,
+                                   double, const engine::Simulation<float>::StepCallback &, std::uint64_t);
 
 }  // namespace spreadmap

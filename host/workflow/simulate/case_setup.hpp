@@ -1,7 +1,8 @@
-// How a case's simulations are built from its resolved scene (scene_model.hpp): the bound
-// plugins, the domain, the engine settings, the settled heap and the spreading run's Simulation
-// (heap + substrate plane + spreader geometry). The case runner and the peer-scene benchmark
-// (bench/peer_scene_bench.cpp) both build through here, so the benchmark times exactly what the
+// A workflow's spreading case as a scene (workflow/scene_file/scene_build.hpp builds and runs it):
+// the settling scene (the heap between two temporary walls, the spreader at rest) and the spreading
+// scene (the settled heap, the substrate plane z = 0 and the moving spreader) are scenes like any
+// scene file's, with the spreader as a wall. The case runner and the benchmarks
+// (bench/peer_scene_bench.cpp) build through here, so the benchmark times exactly what the
 // simulate stage runs.
 #pragma once
 #include <filesystem>
@@ -13,6 +14,7 @@
 #include "core/registry.hpp"
 #include "engine/simulation.hpp"
 #include "workflow/scene/scene_model.hpp"
+#include "workflow/scene_file/scene_build.hpp"
 
 #include <spreadmap/geometry.hpp>
 
@@ -20,17 +22,10 @@ namespace spreadmap {
 
 namespace fs = std::filesystem;
 
-// The bound plugin instances of a case: the contact law three times (particle-particle,
-// -substrate, -spreader) and the spreader geometry.
-struct CasePlugins {
-  PluginInstance pair, substrate, spreader_law, spreader;
-  // `scene_file`: the case's resolved scene (cases/cNNN/scene.json), named in a plugin's refusal.
-  CasePlugins(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file);
-  engine::ContactLaw law(const PluginInstance &i) const;
-  const sm_spreader_ops_v2 &spreader_ops() const { return *spreader.ops<sm_spreader_ops_v2>(); }
-  sm_spreader_description_v2 spreader_description() const;
-  sm_spreader_pose_v2 spreader_pose(double t) const;
-};
+// The scene's spreader plugin bound to its parameters (the geometry alone, for its description and
+// for keeping the heap clear of it). `scene_file`: the case's resolved scene (cases/cNNN/scene.json),
+// named in the plugin's refusal.
+PluginInstance bind_spreader(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file);
 
 // The scene's spreader as it describes itself (outline, travel, speed, gap), from a bound instance.
 sm_spreader_description_v2 describe_spreader(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file);
@@ -41,7 +36,10 @@ nlohmann::json to_json(const sm_spreader_description_v2 &spreader);
 nlohmann::json to_json(const sm_spreader_pose_v2 &pose);
 
 engine::Domain make_domain(const Scene &scene);
-engine::Settings make_settings(const Scene &scene, double dt);
+
+// The spreading run as a scene: the settled heap, the substrate and the spreader from its start.
+scene_file::LoadedScene spreading_scene(const Scene &scene, const engine::ParticleSet &heap,
+                                        const fs::path &scene_file);
 
 // Particles inserted in front of (and under) the spreader and settled under gravity between two
 // temporary walls, with the spreader at rest at its start. `label` names the case in the log;
@@ -50,11 +48,11 @@ template <class Real>
 engine::ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::string &label,
                                 const fs::path &scene_file, const std::function<void(double)> &progress = {});
 
-// The spreading run: the heap, the substrate plane z = 0 and the moving spreader. The plugins are
-// kept beside the Simulation, which points into them.
+// The spreading run built from spreading_scene(). The Simulation points into the plugins `built` keeps.
 template <class Real> struct SpreadingRun {
-  CasePlugins plugins;
-  engine::Simulation<Real> sim;
+  std::unique_ptr<scene_file::SceneRun<Real>> built;
+  engine::Simulation<Real> &sim;
+  const scene_file::BoundSpreader &spreader;
 };
 template <class Real>
 std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const Scene &scene, PluginRegistry &reg,
@@ -64,7 +62,8 @@ std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const Scene &scene, Plugi
 // where particles may fall asleep follows the spreader (time.sleep_behind behind its trailing edge),
 // moved at every callback (every `every` steps). The case runner and the benchmarks run through here.
 template <class Real>
-bool run_spreading(engine::Simulation<Real> &sim, const CasePlugins &plugins, const Scene &scene, double t_end,
-                   const typename engine::Simulation<Real>::StepCallback &callback = {}, std::uint64_t every = 100);
+bool run_spreading(engine::Simulation<Real> &sim, const scene_file::BoundSpreader &spreader, const Scene &scene,
+                   double t_end, const typename engine::Simulation<Real>::StepCallback &callback = {},
+                   std::uint64_t every = 100);
 
 }  // namespace spreadmap
