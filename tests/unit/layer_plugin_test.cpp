@@ -35,13 +35,53 @@ TEST_F(LayerPlugin, DescribesItself) {
   EXPECT_EQ(plugin_->abi, SPREADMAP_PLUGIN_ABI);
   EXPECT_STREQ(plugin_->kind, "metrics");
   EXPECT_STREQ(plugin_->name, "layer");
-  ASSERT_EQ(plugin_->n_params, 2u);
+  ASSERT_EQ(plugin_->n_params, 3u);
   EXPECT_STREQ(plugin_->params[0].name, "grid");
   EXPECT_STREQ(plugin_->params[0].unit, "m");
   EXPECT_EQ(plugin_->params[0].def, 0.0);
   EXPECT_STREQ(plugin_->params[1].name, "exclude_loose");
   EXPECT_EQ(plugin_->params[1].type, SM_BOOLEAN);
   EXPECT_EQ(plugin_->params[1].def, 1.0);  // spheres in flight are not the layer, by default
+  EXPECT_STREQ(plugin_->params[2].name, "segregation");
+  EXPECT_EQ(plugin_->params[2].type, SM_BOOLEAN);
+  EXPECT_EQ(plugin_->params[2].def, 0.0);  // opt-in: metrics.csv of existing workflows keeps its columns
+}
+
+// The segregation metrics appear, with their units, only when asked for.
+TEST_F(LayerPlugin, ReportsSegregationOnlyWhenAsked) {
+  const double r[2] = {10e-6, 20e-6}, x[2] = {0.2e-3, 2e-3}, y[2] = {0.5e-3, 0.5e-3}, z[2] = {10e-6, 20e-6};
+  sm_layer_input_v1 in{};
+  in.n = 2;
+  in.x = x;
+  in.y = y;
+  in.z = z;
+  in.r = r;
+  in.region[1] = in.region[3] = 1e-3;  // holds the smaller sphere only
+  in.speed = in.gap = std::nan("");
+  for (const bool asked : {false, true}) {
+    sm_error err{};
+    void *self = plugin_->create(asked ? R"({"grid": 0, "exclude_loose": true, "segregation": true})"
+                                       : R"({"grid": 0, "exclude_loose": true, "segregation": false})",
+                                 &err);
+    ASSERT_NE(self, nullptr) << err.text;
+    const char *text = ops_->evaluate(self, &in, &err);
+    ASSERT_NE(text, nullptr) << err.text;
+    const auto j = nlohmann::json::parse(text);
+    for (const char *name : {"layer_d10", "layer_d50", "layer_d90", "feed_d10", "feed_d50", "feed_d90", "d10_ratio",
+                             "d50_ratio", "d90_ratio", "layer_d50_number", "feed_d50_number", "d50_number_ratio",
+                             "fines_diameter", "layer_fines", "feed_fines"}) {
+      EXPECT_EQ(j["metrics"].contains(name), asked) << name;
+      EXPECT_EQ(j["units"].contains(name), asked) << name;
+    }
+    if (asked) {
+      // Layer: the 20 um sphere; feed by volume (1 : 8): D50 = 40 um.
+      EXPECT_DOUBLE_EQ(j["metrics"]["d50_ratio"].get<double>(), 0.5);
+      EXPECT_EQ(j["units"]["layer_d50"], "m");
+      EXPECT_EQ(j["units"]["d50_ratio"], "-");
+      EXPECT_EQ(j["metrics"]["layer_fines"].get<double>(), 0.0);  // the feed's D10 is 20 um: nothing strictly below
+    }
+    plugin_->destroy(self);
+  }
 }
 
 TEST_F(LayerPlugin, EvaluatesASphereAndExposesItsHeightMap) {

@@ -9,7 +9,10 @@
 #include <cstdio>
 #include <numeric>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <spreadmap/size_sample.hpp>
 
 #include "scene/heap.hpp"
 #include "scene/size_fit.hpp"
@@ -24,17 +27,11 @@ constexpr double shares[3] = {0.1, 0.5, 0.9};
 
 double weight(double d, FractionBasis by) { return by == FractionBasis::volume ? d * d * d : 1.0; }
 
-// The sample's quantile by number or by volume: the smallest d with a share >= p at or below it.
+// The sample's quantile by number or by volume: the smallest d with a share >= p at or below it
+// (the SDK's SizeSample, which the layer's segregation metrics use too).
 double sample_quantile(std::vector<double> d, double p, FractionBasis by) {
-  std::sort(d.begin(), d.end());
-  double total = 0;
-  for (double x : d) total += weight(x, by);
-  double below = 0;
-  for (double x : d) {
-    below += weight(x, by);
-    if (below >= p * total) return x;
-  }
-  return d.back();
+  return spreadmap::SizeSample(std::move(d))
+      .percentile(p, by == FractionBasis::volume ? spreadmap::SizeBasis::volume : spreadmap::SizeBasis::number);
 }
 
 // Standard error of the sample's quantile at the distribution's quantile q: the standard error of

@@ -114,7 +114,22 @@ const std::vector<std::string> &standard_metric_order() {
                                                  "largest_bare_patch",
                                                  "particles_in_region",
                                                  "loose_spheres",
-                                                 "cell"};
+                                                 "cell",
+                                                 "layer_d10",
+                                                 "layer_d50",
+                                                 "layer_d90",
+                                                 "feed_d10",
+                                                 "feed_d50",
+                                                 "feed_d90",
+                                                 "d10_ratio",
+                                                 "d50_ratio",
+                                                 "d90_ratio",
+                                                 "layer_d50_number",
+                                                 "feed_d50_number",
+                                                 "d50_number_ratio",
+                                                 "fines_diameter",
+                                                 "layer_fines",
+                                                 "feed_fines"};
   return order;
 }
 

@@ -4,9 +4,10 @@
 // cells over the host's sampling region and reports mean height, R_q (std. deviation of h), V_s (mean
 // height x U, the study's spread rate per unit roller width), solid thickness with spheres clipped
 // exactly by the region, packing fractions, coverage and the largest bare patch, all in SI with their
-// units. Spheres resting on nothing (in flight) are left out by default (resting.hpp). The algorithm
-// lives in layer_metrics / heightmap (plain C++, tested directly); this file is
-// only the C boundary. The plugin writes no file: the host asks for the last map through heightmap().
+// units. Spheres resting on nothing (in flight) are left out by default (resting.hpp). With
+// `segregation: true` it also compares the layer's size distribution with the feed's (segregation.hpp).
+// The algorithm lives in layer_metrics / heightmap / segregation (plain C++, tested directly); this
+// file is only the C boundary. The plugin writes no file: the host asks for the last map through heightmap().
 #include <spreadmap/metric.hpp>
 #include <spreadmap/plugin.hpp>
 
@@ -27,17 +28,22 @@ class Layer {
                  "height-map cell size (square cells, sampled at their centres); 0 = mean sphere diameter / 5"),
       sm::boolean("exclude_loose", true,
                   "leave out spheres resting on nothing (in flight when the state was taken); false: every sphere"),
+      sm::boolean("segregation", false,
+                  "also the layer's sizes against the feed (every sphere): layer_/feed_ d10, d50, d90 by volume [m], "
+                  "their d*_ratio = layer/feed [-], d50 by number (*_number), fines_diameter = feed D10 [m], "
+                  "layer_fines/feed_fines = volume share below it [-]"),
   };
   static Layer bind(const sm::Values &v) {
     Layer layer;
     layer.cell_ = v["grid"];
     layer.exclude_loose_ = v.boolean("exclude_loose");
+    layer.segregation_ = v.has("segregation") && v.boolean("segregation");  // absent (callers before 1.1): off
     if (layer.cell_ < 0) throw sm::ParamError("grid = " + std::to_string(layer.cell_) + " m must be >= 0 (0 = d/5)");
     return layer;
   }
 
   const char *evaluate(const sm_layer_input_v1 &in) {
-    last_ = sm::layer::characterise_layer(in, cell_, exclude_loose_);
+    last_ = sm::layer::characterise_layer(in, cell_, exclude_loose_, segregation_);
     json_ = sm::layer::metrics_json(last_);
     return json_.c_str();
   }
@@ -46,6 +52,7 @@ class Layer {
  private:
   double cell_ = 0;
   bool exclude_loose_ = true;
+  bool segregation_ = false;
   sm::layer::LayerResult last_;
   std::string json_;  // owned here: valid until the next evaluate() or destroy()
 };
@@ -78,6 +85,7 @@ const sm_metrics_ops_v1 ops_table = {&evaluate, &heightmap};
 
 }  // namespace
 
-SPREADMAP_PLUGIN("metrics", Layer, "layer", "1.0.0",
-                 "height map, R_q, V_s, solid thickness, packing, coverage and bare patches of a spread layer",
+SPREADMAP_PLUGIN("metrics", Layer, "layer", "1.1.0",
+                 "height map, R_q, V_s, solid thickness, packing, coverage and bare patches of a spread layer; "
+                 "optionally its size distribution against the feed",
                  &ops_table)

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "clipped_sphere.hpp"
 #include "resting.hpp"
@@ -49,6 +50,19 @@ nlohmann::ordered_json number_or_null(double v) {
 
 std::string metres(double v) { return std::to_string(v * 1e6) + " um"; }
 
+// Calls visit(i) for every sphere i with a centre (or a periodic image's) in [x0, x1) x [y0, y1).
+template <class Visit>
+void for_each_centre_in_region(const SphereArrays &s, const double region[4], const PeriodicStrip &strip,
+                               Visit &&visit) {
+  for (std::size_t i = 0; i < s.n; ++i) {
+    if (s.x[i] < region[0] || s.x[i] >= region[1]) continue;
+    sm::layer::for_each_image_shift(s.y[i], 0.0, region[2], region[3], strip, [&](double shift) {
+      const double y = s.y[i] + shift;
+      if (y >= region[2] && y < region[3]) visit(i);
+    });
+  }
+}
+
 }  // namespace
 
 double sm::layer::mean_diameter(const SphereArrays &s) {
@@ -72,14 +86,15 @@ double sm::layer::solid_volume_in_region(const SphereArrays &s, const double reg
 
 std::uint64_t sm::layer::centres_in_region(const SphereArrays &s, const double region[4], const PeriodicStrip &strip) {
   std::uint64_t count = 0;
-  for (std::size_t i = 0; i < s.n; ++i) {
-    if (s.x[i] < region[0] || s.x[i] >= region[1]) continue;
-    for_each_image_shift(s.y[i], 0.0, region[2], region[3], strip, [&](double shift) {
-      const double y = s.y[i] + shift;
-      if (y >= region[2] && y < region[3]) ++count;
-    });
-  }
+  for_each_centre_in_region(s, region, strip, [&](std::size_t) { ++count; });
   return count;
+}
+
+std::vector<double> sm::layer::diameters_in_region(const SphereArrays &s, const double region[4],
+                                                   const PeriodicStrip &strip) {
+  std::vector<double> d;
+  for_each_centre_in_region(s, region, strip, [&](std::size_t i) { d.push_back(2 * s.r[i]); });
+  return d;
 }
 
 std::size_t sm::layer::largest_bare_patch_points(const std::vector<std::uint8_t> &covered, std::uint32_t nx,
@@ -114,7 +129,8 @@ std::size_t sm::layer::largest_bare_patch_points(const std::vector<std::uint8_t>
   return largest;
 }
 
-LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose) {
+LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose,
+                                          bool with_segregation) {
   check_input(in);
   LayerResult out;
   SphereArrays spheres{static_cast<std::size_t>(in.n), in.x, in.y, in.z, in.r};
@@ -164,6 +180,12 @@ LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double ce
   m.largest_bare_patch =
       static_cast<double>(largest_bare_patch_points(out.covered, out.grid.nx, out.grid.ny)) * cell * cell;
   m.particles_in_region = centres_in_region(spheres, in.region, strip);
+  if (with_segregation) {
+    std::vector<double> feed(in.n);  // every sphere handed in, loose ones included
+    for (std::uint64_t i = 0; i < in.n; ++i) feed[i] = 2 * in.r[i];
+    out.segregation =
+        segregation(SizeSample(diameters_in_region(spheres, in.region, strip)), SizeSample(std::move(feed)));
+  }
 
   if (solid == 0 && n_covered == 0)
     out.warnings.push_back(
@@ -176,7 +198,7 @@ LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double ce
 std::string sm::layer::metrics_json(const LayerResult &r) {
   const LayerMetrics &m = r.metrics;
   nlohmann::ordered_json metrics, units;
-  const auto put = [&](const char *name, nlohmann::ordered_json value, const char *unit) {
+  const auto put = [&](const std::string &name, nlohmann::ordered_json value, const char *unit) {
     metrics[name] = std::move(value);
     units[name] = unit;
   };
@@ -191,6 +213,18 @@ std::string sm::layer::metrics_json(const LayerResult &r) {
   put("particles_in_region", m.particles_in_region, "-");
   put("cell", number_or_null(m.cell), "m");
   put("loose_spheres", m.loose_spheres, "-");
+  if (const auto &g = r.segregation) {
+    static constexpr const char *d[3] = {"d10", "d50", "d90"};
+    for (int i = 0; i < 3; ++i) put("layer_" + std::string(d[i]), number_or_null(g->layer_d[i]), "m");
+    for (int i = 0; i < 3; ++i) put("feed_" + std::string(d[i]), number_or_null(g->feed_d[i]), "m");
+    for (int i = 0; i < 3; ++i) put(std::string(d[i]) + "_ratio", number_or_null(g->ratio[i]), "-");
+    put("layer_d50_number", number_or_null(g->layer_d50_number), "m");
+    put("feed_d50_number", number_or_null(g->feed_d50_number), "m");
+    put("d50_number_ratio", number_or_null(g->d50_number_ratio), "-");
+    put("fines_diameter", number_or_null(g->fines_diameter), "m");
+    put("layer_fines", number_or_null(g->layer_fines), "-");
+    put("feed_fines", number_or_null(g->feed_fines), "-");
+  }
   nlohmann::ordered_json doc;
   doc["metrics"] = std::move(metrics);
   doc["units"] = std::move(units);

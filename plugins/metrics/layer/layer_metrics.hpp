@@ -9,16 +9,19 @@
 // [x0, x1) x [y0, y1) [-]; cell, the grid's cell [m]; loose_spheres, spheres left out because they
 // rest on nothing (exclude_loose) [-]. An undefined value is NaN here and null in JSON,
 // never a silent number: vs without a speed, packing_fraction when the map's volume is 0,
-// packing_fraction_gap without a gap.
+// packing_fraction_gap without a gap. With `segregation`, also the layer's size distribution against
+// the feed (segregation.hpp).
 #pragma once
 #include <spreadmap/metric.hpp>
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "heightmap.hpp"
+#include "segregation.hpp"
 
 namespace spreadmap::layer {
 
@@ -34,14 +37,17 @@ struct LayerResult {
   std::vector<double> height;         // row-major, above the substrate [m]
   std::vector<std::uint8_t> covered;  // 1 where a sphere covers the grid point
   LayerMetrics metrics;
-  std::vector<std::string> warnings;  // sentences for the user; the host logs them
+  std::optional<SegregationMetrics> segregation;  // when asked for
+  std::vector<std::string> warnings;              // sentences for the user; the host logs them
 };
 
 // The whole characterisation. `cell` is the plugin's `grid` parameter: 0 means mean diameter / 5.
 // exclude_loose: only the spheres resting on the substrate (directly or through touching spheres,
-// resting.hpp) make the layer; loose_spheres counts the others. Throws std::invalid_argument for
+// resting.hpp) make the layer; loose_spheres counts the others. with_segregation: also the layer's
+// size distribution against the feed, every sphere of `in`. Throws std::invalid_argument for
 // unusable input (empty region, non-finite sphere data).
-LayerResult characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose = false);
+LayerResult characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose = false,
+                               bool with_segregation = false);
 
 // {"metrics": {...}, "units": {...}, "warnings": [...]}; NaN metrics are written as null.
 std::string metrics_json(const LayerResult &result);
@@ -52,6 +58,9 @@ double mean_diameter(const SphereArrays &spheres);  // 0 when there are no spher
 double solid_volume_in_region(const SphereArrays &spheres, const double region[4], const PeriodicStrip &strip);
 // Centres (periodic images included) in [x0, x1) x [y0, y1).
 std::uint64_t centres_in_region(const SphereArrays &spheres, const double region[4], const PeriodicStrip &strip);
+// The diameters of those centres, one per centre counted by centres_in_region [m].
+std::vector<double> diameters_in_region(const SphereArrays &spheres, const double region[4],
+                                        const PeriodicStrip &strip);
 // Number of grid points in the largest 4-connected set of uncovered points.
 std::size_t largest_bare_patch_points(const std::vector<std::uint8_t> &covered, std::uint32_t nx, std::uint32_t ny);
 
