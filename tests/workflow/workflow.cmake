@@ -49,3 +49,5 @@ spreadmap_workflow_test(scenes SOURCES ${CMAKE_CURRENT_LIST_DIR}/scenes_test.cpp
 target_link_libraries(test_workflow_scenes PRIVATE spreadmap_workflow)  # calibrate's heap_angle
 # `spreadmap calibrate` on a small drum: kept runs, a changed scene, refusals (the round trip: integration/).
 spreadmap_workflow_test(calibrate SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibrate_test.cpp TIMEOUT 300)
+# Replicates: different heaps per point, their mean and std in metrics.csv, the GP given their scatter.
+spreadmap_workflow_test(replicates SOURCES ${CMAKE_CURRENT_LIST_DIR}/replicates_test.cpp TIMEOUT 300)
