@@ -56,6 +56,7 @@ std::unique_ptr<Stage> make_characterise_stage();
 std::unique_ptr<Stage> make_train_stage();
 std::unique_ptr<Stage> make_map_stage();
 std::unique_ptr<Stage> make_tradeoff_stage();
+std::unique_ptr<Stage> make_verify_stage();
 std::unique_ptr<Stage> make_stage(const std::string &kind);
 
 // The whole workflow: load, validate everything (scene, every stage), then run the selected

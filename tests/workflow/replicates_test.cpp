@@ -3,7 +3,6 @@
 // deviation of its per-replicate rows (kept in metrics_replicates.csv), the GP takes that scatter as
 // known noise, and a second run recomputes nothing.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -14,25 +13,20 @@
 namespace fs = std::filesystem;
 namespace t = spreadmap::test;
 
-using t::contains;
-using t::csv_columns;
-using t::json_file;
-using t::slurp;
-
 TEST(Replicates, SpreadDifferentHeapsAndMetricsHoldTheirMeanAndStd) {
   const fs::path workflow = fs::path(SPREADMAP_SOURCE_DIR) / "tests/workflow/data/replicates/tiny_replicates.yaml";
-  const fs::path run = fs::temp_directory_path() / ("spreadmap_replicates_" + std::to_string(::getpid()));
-  fs::remove_all(run);
+  const fs::path run = t::fresh_run_directory("spreadmap_replicates");
   const auto first = t::run({{"run", workflow.string(), "--out", run.string(), "--jobs", "2"}, {}, {}, {}});
   ASSERT_EQ(first.exit_code, 0) << first.describe();
-  EXPECT_TRUE(contains(first.err, "simulate: 8 cases (4 points x 2 replicates), 8 to run")) << first.err;
+  EXPECT_TRUE(t::contains(first.err, "simulate: 8 cases (4 points x 2 replicates), 8 to run")) << first.err;
   // Replicates: a heap of their own (another seed, other positions), the same inputs.
-  const auto scene0 = json_file(run / "cases/c000/scene.json"), scene1 = json_file(run / "cases/c000_r1/scene.json");
+  const auto scene0 = t::json_file(run / "cases/c000/scene.json"),
+             scene1 = t::json_file(run / "cases/c000_r1/scene.json");
   EXPECT_NE(scene0["powder"]["seed"], scene1["powder"]["seed"]);
-  EXPECT_NE(slurp(run / "cases/c000/state.vtp"), slurp(run / "cases/c000_r1/state.vtp"));
+  EXPECT_NE(t::slurp(run / "cases/c000/state.vtp"), t::slurp(run / "cases/c000_r1/state.vtp"));
 
   // metrics.csv: per point, the mean and the sample standard deviation of its per-replicate rows.
-  auto runs = csv_columns(run / "metrics_replicates.csv"), points = csv_columns(run / "metrics.csv");
+  auto runs = t::csv_columns(run / "metrics_replicates.csv"), points = t::csv_columns(run / "metrics.csv");
   ASSERT_EQ(runs["case"].size(), 8u);
   ASSERT_EQ(points["case"].size(), 4u);
   for (std::size_t p = 0; p < 4; ++p) {
@@ -48,17 +42,17 @@ TEST(Replicates, SpreadDifferentHeapsAndMetricsHoldTheirMeanAndStd) {
       EXPECT_GT(sd, 0.0) << m << ": two heaps, two layers";
     }
   }
-  EXPECT_EQ(json_file(run / "metrics.units.json")["vs_std"], "m^2/s");
+  EXPECT_EQ(t::json_file(run / "metrics.units.json")["vs_std"], "m^2/s");
 
   // The GP got the replicate scatter as known noise, and keeps it in its state.
-  EXPECT_TRUE(contains(first.err, "replicate scatter of 4 rows is given to the model")) << first.err;
-  EXPECT_EQ(json_file(run / "train/gp/model.json")["state"]["noise_var"].size(), 4u);
+  EXPECT_TRUE(t::contains(first.err, "replicate scatter of 4 rows is given to the model")) << first.err;
+  EXPECT_EQ(t::json_file(run / "train/gp/model.json")["state"]["noise_var"].size(), 4u);
 
   // run again: every replicate finished, none recomputed, the same table
-  const std::string table = slurp(run / "metrics.csv");
+  const std::string table = t::slurp(run / "metrics.csv");
   const auto again = t::run({{"run", workflow.string(), "--out", run.string()}, {}, {}, {}});
   ASSERT_EQ(again.exit_code, 0) << again.describe();
-  EXPECT_TRUE(contains(again.err, "8 cases (4 points x 2 replicates), 0 to run, 8 finished already")) << again.err;
-  EXPECT_EQ(slurp(run / "metrics.csv"), table);
+  EXPECT_TRUE(t::contains(again.err, "8 cases (4 points x 2 replicates), 0 to run, 8 finished already")) << again.err;
+  EXPECT_EQ(t::slurp(run / "metrics.csv"), table);
   if (!HasFailure()) fs::remove_all(run);
 }

@@ -1,6 +1,8 @@
 // Reading what a run wrote, for the tests that run the binary: a file's bytes, a JSON file, a CSV
-// table by column (spreadmap's CSVs never quote: no cell holds a comma).
+// table by column (spreadmap's CSVs never quote: no cell holds a comma); a fresh run directory.
 #pragma once
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -37,6 +39,13 @@ inline std::map<std::string, std::vector<std::string>> csv_columns(const std::fi
     }
   }
   return cols;
+}
+
+// An empty folder for a run, <temp>/<stem>_<pid>.
+inline std::filesystem::path fresh_run_directory(const std::string &stem) {
+  const auto dir = std::filesystem::temp_directory_path() / (stem + "_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  return dir;
 }
 
 inline bool contains(const std::string &text, const std::string &part) { return text.find(part) != std::string::npos; }

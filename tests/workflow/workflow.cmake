@@ -51,3 +51,5 @@ target_link_libraries(test_workflow_scenes PRIVATE spreadmap_workflow)  # calibr
 spreadmap_workflow_test(calibrate SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibrate_test.cpp TIMEOUT 300)
 # Replicates: different heaps per point, their mean and std in metrics.csv, the GP given their scatter.
 spreadmap_workflow_test(replicates SOURCES ${CMAKE_CURRENT_LIST_DIR}/replicates_test.cpp TIMEOUT 300)
+# The verify stage on a tiny version of workflows/quickstart_verify.yaml.
+spreadmap_workflow_test(verify SOURCES ${CMAKE_CURRENT_LIST_DIR}/verify_test.cpp TIMEOUT 300)
