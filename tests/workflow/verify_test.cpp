@@ -16,11 +16,18 @@ namespace t = spreadmap::test;
 TEST(Verify, TheVerifiedOptimumHoldsItsPredictionItsRunsAndTheVerdict) {
   const fs::path workflow = fs::path(SPREADMAP_SOURCE_DIR) / "tests/workflow/data/verify/tiny_verify.yaml";
   const fs::path run = t::fresh_run_directory("spreadmap_verify");
-  const auto first = t::run({{"run", workflow.string(), "--out", run.string(), "--jobs", "2"}, {}, {}, {}});
+  const auto first = t::run(
+      {{"run", workflow.string(), "--out", run.string(), "--jobs", "2", "--only", "simulate,characterise,train,map"},
+       {},
+       {},
+       {}});
   ASSERT_EQ(first.exit_code, 0) << first.describe();
   EXPECT_TRUE(t::contains(first.err, "simulate: 8 cases (4 points x 2 replicates)")) << first.err;
 
   auto runs = t::csv_columns(run / "metrics_replicates.csv");
+  const std::string proposed_map = t::slurp(run / "map/map.png");  // as the map stage drew it
+  const auto verify = t::run({{"verify", workflow.string(), "--out", run.string(), "--jobs", "2"}, {}, {}, {}});
+  ASSERT_EQ(verify.exit_code, 0) << verify.describe();
   // verified.json: both targets share one optimum, checked once with 2 new runs.
   const auto verified = t::json_file(run / "map/verified.json");
   const auto optimum = t::json_file(run / "map/optimum.json");
@@ -58,7 +65,12 @@ TEST(Verify, TheVerifiedOptimumHoldsItsPredictionItsRunsAndTheVerdict) {
   const double U = point["inputs"]["U"], omega = point["inputs"]["omega"];
   const bool border = std::abs(U - 0.07) < 1e-12 || std::abs(U - 0.1) < 1e-12 || std::abs(std::abs(omega) - 20) < 1e-9;
   EXPECT_EQ(point["at_edge"].get<bool>(), border) << point.dump(2);
-  EXPECT_EQ(t::contains(first.err, "at the edge of the explored range: widen U or ω"), border) << first.err;
+  EXPECT_EQ(t::contains(verify.err, "at the edge of the explored range: widen U or ω"), border) << verify.err;
+#ifdef SPREADMAP_TEST_FIGURES
+  // map.png drawn again with the optimum marked as checked: not the proposed map's picture
+  EXPECT_GT(t::slurp(run / "map/map.png").size(), 1000u);
+  EXPECT_NE(t::slurp(run / "map/map.png"), proposed_map);
+#endif
 
   // `spreadmap verify` alone: every run finished, nothing recomputed, the same answer.
   const auto again = t::run({{"verify", workflow.string(), "--out", run.string()}, {}, {}, {}});

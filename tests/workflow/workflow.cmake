@@ -53,3 +53,6 @@ spreadmap_workflow_test(calibrate SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibrate_te
 spreadmap_workflow_test(replicates SOURCES ${CMAKE_CURRENT_LIST_DIR}/replicates_test.cpp TIMEOUT 300)
 # The verify stage on a tiny version of workflows/quickstart_verify.yaml.
 spreadmap_workflow_test(verify SOURCES ${CMAKE_CURRENT_LIST_DIR}/verify_test.cpp TIMEOUT 300)
+if(TARGET spreadmap_render)
+  target_compile_definitions(test_workflow_verify PRIVATE SPREADMAP_TEST_FIGURES=1)
+endif()

@@ -14,7 +14,9 @@
 #include "workflow/scene/scene_section.hpp"
 #include "workflow/simulate/replicates.hpp"
 #include "workflow/stage.hpp"
+#include "workflow/figures/figure_style.hpp"
 #include "workflow/verify/verification.hpp"
+#include "workflow/verify/verified_map.hpp"
 #include "workflow/verify/verify_runs.hpp"
 
 namespace spreadmap {
@@ -49,9 +51,10 @@ class VerifyStage : public Stage {
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     for (const auto &kv : entry.config)
-      if (kv.first.as<std::string>() != "replicates")
+      if (kv.first.as<std::string>() != "replicates" && kv.first.as<std::string>() != "render")
         diag.error(Location::of(file, kv.first), "verify." + kv.first.as<std::string>(), "unknown key",
-                   "known: replicates");
+                   "known: replicates, render");
+    style_ = figures::read_style(entry.config["render"], true, false, file, "verify.render", diag);
     runs_ = read_replicates(entry.config["replicates"], file, "verify.replicates", default_runs, diag);
     const StageEntry *map = nullptr, *characterise = nullptr;
     for (const auto &s : wf.stages) {
@@ -75,6 +78,7 @@ class VerifyStage : public Stage {
   }
 
   void run(StageContext &ctx) override {
+    figures::use_style(style_);
     const fs::path optimum_json = ctx.run.map_dir() / "optimum.json";
     if (!fs::exists(optimum_json))
       throw InputError("error: verify: " + optimum_json.string() + " does not exist; run the map stage first");
@@ -154,6 +158,10 @@ class VerifyStage : public Stage {
         ctx.run.map_dir() / "verified.json",
         nlohmann::json({{"model", plugin}, {"replicates", runs_}, {"points", out_points}, {"verified", all}}).dump(2) +
             "\n");
+    // the figure shows the first target's optimum: point v0 when that one was found
+    const auto &optima = optimum.value("optima", nlohmann::json::array());
+    if (style_.on && !optima.empty() && optima[0].value("found", false))
+      redraw_verified_map(ctx, model, optimum, out_points[0]["verified"].get<bool>() ? 1 : 0);
   }
 
  private:
@@ -179,6 +187,7 @@ class VerifyStage : public Stage {
 
   std::size_t runs_ = default_runs;
   CharacteriseSettings settings_;
+  figures::Style style_;
 };
 
 }  // namespace
