@@ -38,6 +38,7 @@ commands:
   map MODEL           process map of a trained model
   query MODEL         predictions or the best operating point of a trained model
   render STATE        snapshot of a particle state as PNG
+  verify WORKFLOW     simulate the optimum a workflow's map proposes and check it against the prediction
 
   spreadmap <command> --help    options of a command
   spreadmap --version
@@ -259,7 +260,7 @@ int main(int argc, char **argv) {
     if (cmd == "plugins") return cmd_plugins(argc - 1, argv + 1);
     if (auto sub = sm::find_command(cmd)) return sub(argc - 1, argv + 1);
     const std::vector<std::string> cmds = {"run", "validate", "plugins", "characterise", "train",
-                                           "map", "query",    "render",  "simulate"};
+                                           "map", "query",    "render",  "simulate",     "verify"};
     const std::string near = sm::closest(cmd, cmds);
     std::cerr << "error: unknown command '" << cmd << "'" << (near.empty() ? "" : "; did you mean '" + near + "'?")
               << "\n"

@@ -11,9 +11,10 @@ namespace spreadmap::analysis {
 
 CrossValidation cross_validate(const std::function<std::unique_ptr<Model>()> &make, const Eigen::MatrixXd &x,
                                const Eigen::MatrixXd &y, const std::vector<std::size_t> &rows,
-                               const std::vector<Split> &folds) {
+                               const std::vector<Split> &folds, const Eigen::MatrixXd &noise_var) {
   if (folds.size() < 2) throw std::invalid_argument("cross-validation needs at least 2 folds");
   const Eigen::MatrixXd xr = x(rows, Eigen::all), yr = y(rows, Eigen::all);
+  const Eigen::MatrixXd vr = noise_var.size() ? Eigen::MatrixXd(noise_var(rows, Eigen::all)) : Eigen::MatrixXd();
   CrossValidation cv;
   cv.rows = rows;
   cv.predicted.resize(yr.rows(), yr.cols());
@@ -22,7 +23,8 @@ CrossValidation cross_validate(const std::function<std::unique_ptr<Model>()> &ma
     const Split &f = folds[k];
     for (auto r : f.test) cv.fold.at(r) = k;
     auto m = make();
-    m->fit(xr(f.train, Eigen::all), yr(f.train, Eigen::all));
+    if (vr.size()) m->fit_with_noise(xr(f.train, Eigen::all), yr(f.train, Eigen::all), vr(f.train, Eigen::all));
+    else m->fit(xr(f.train, Eigen::all), yr(f.train, Eigen::all));
     cv.predicted(f.test, Eigen::all) = m->predict(xr(f.test, Eigen::all)).mean;
   }
   cv.fold_nrmse.assign(std::size_t(y.cols()), {});

@@ -22,10 +22,11 @@ struct CrossValidation {
   std::vector<std::vector<double>> fold_nrmse;
 };
 
-// folds index into `rows` (0 .. rows.size()-1); a fresh model from make() per fold.
+// folds index into `rows` (0 .. rows.size()-1); a fresh model from make() per fold. noise_var: the
+// known variance of each y (as y, rows of x), given to each fold's fit; empty when none.
 CrossValidation cross_validate(const std::function<std::unique_ptr<Model>()> &make, const Eigen::MatrixXd &x,
                                const Eigen::MatrixXd &y, const std::vector<std::size_t> &rows,
-                               const std::vector<Split> &folds);
+                               const std::vector<Split> &folds, const Eigen::MatrixXd &noise_var = {});
 
 // Fills each output's nrmse_cv (pooled over all rows), nrmse_cv_sd (sample standard deviation over
 // the folds) and r_cv (Pearson R of the out-of-fold predictions; NaN below 3 rows), and the

@@ -44,11 +44,16 @@ PluginModel::~PluginModel() {
 
 std::string PluginModel::label() const { return std::string("surrogate/") + plugin_->name; }
 
-void PluginModel::fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y) {
-  const RowMajor xr = x, yr = y;
-  const sm_dataset_v1 d{uint32_t(x.rows()), uint32_t(x.cols()), uint32_t(y.cols()), xr.data(), yr.data()};
-  sm_error err{};
+void PluginModel::fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y) { fit_with_noise(x, y, {}); }
+
+void PluginModel::fit_with_noise(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y, const Eigen::MatrixXd &noise_var) {
+  const RowMajor xr = x, yr = y, vr = noise_var;
   if (x.rows() != y.rows()) throw std::invalid_argument(label() + ": inputs and outputs differ in row count");
+  if (noise_var.size() && (noise_var.rows() != y.rows() || noise_var.cols() != y.cols()))
+    throw std::invalid_argument(label() + ": the noise variances are not one per output value");
+  const sm_dataset_v1 d{uint32_t(x.rows()), uint32_t(x.cols()), uint32_t(y.cols()),
+                        xr.data(),          yr.data(),          noise_var.size() ? vr.data() : nullptr};
+  sm_error err{};
   if (ops_->fit(instance_, &d, &err) != 0) throw std::runtime_error(label() + ": fit failed: " + err.text);
   n_out_ = y.cols();
 }

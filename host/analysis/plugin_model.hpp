@@ -22,8 +22,11 @@ class PluginModel : public Model {
   PluginModel &operator=(const PluginModel &) = delete;
 
   void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y) override;
+  // noise_var reaches the plugin as sm_dataset_v1::noise_var (NULL when empty).
+  void fit_with_noise(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y, const Eigen::MatrixXd &noise_var) override;
   Prediction predict(const Eigen::MatrixXd &x) const override;
   bool has_std() const override { return ops_->has_std != 0; }
+  bool takes_noise() const override { return ops_->takes_noise_var != 0; }
   nlohmann::json state() const override;
   // The C table does not say how many outputs a model has: load() reads it from the state's
   // "y_scale" (both shipped plugins keep one); other plugins need the count given.

@@ -18,12 +18,13 @@ std::unique_ptr<Stage> make_stage(const std::string &kind) {
   if (kind == "map") return make_map_stage();
   if (kind == "tradeoff") return make_tradeoff_stage();
   if (kind == "calibrate") return make_calibrate_stage();
+  if (kind == "verify") return make_verify_stage();
   throw InputError("unknown stage '" + kind + "'");
 }
 
 static bool needs_scene(const Workflow &wf) {
   for (const auto &s : wf.stages)
-    if (s.kind == "simulate" || s.kind == "characterise" || s.kind == "tradeoff") return true;
+    if (s.kind == "simulate" || s.kind == "characterise" || s.kind == "tradeoff" || s.kind == "verify") return true;
   return false;
 }
 

@@ -60,6 +60,7 @@ std::unique_ptr<Stage> make_train_stage();
 std::unique_ptr<Stage> make_map_stage();
 std::unique_ptr<Stage> make_tradeoff_stage();
 std::unique_ptr<Stage> make_calibrate_stage();
+std::unique_ptr<Stage> make_verify_stage();
 std::unique_ptr<Stage> make_stage(const std::string &kind);
 
 // The whole workflow: load, validate everything (scene, every stage), then run the selected

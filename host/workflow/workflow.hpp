@@ -15,7 +15,7 @@ namespace spreadmap {
 namespace fs = std::filesystem;
 
 struct StageEntry {
-  std::string kind;   // simulate | characterise | train | map
+  std::string kind;   // simulate | characterise | train | map | verify | tradeoff
   YAML::Node config;  // its mapping (may be empty)
   Location where;
 };
@@ -40,7 +40,8 @@ YAML::Node load_yaml(const fs::path &file);
 Workflow load_workflow(const fs::path &file);
 
 inline const std::vector<std::string> &stage_kinds() {
-  static const std::vector<std::string> kinds = {"calibrate", "simulate", "characterise", "train", "map", "tradeoff"};
+  static const std::vector<std::string> kinds = {"calibrate", "simulate", "characterise", "train",
+                                                 "map",       "verify",   "tradeoff"};
   return kinds;
 }
 

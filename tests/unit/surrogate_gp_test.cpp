@@ -127,3 +127,52 @@ TEST(SurrogateGp, LearnsTheNoiseOfANoisySet) {
     EXPECT_LT(truth_rmse, sigma) << "the fit should sit closer to the function than the data do";
   }
 }
+
+TEST(SurrogateGp, KnownNoiseShrinksThePosteriorMeanAsItsClosedFormSays) {
+  // Two points far apart for the length scale (independent: k(x1, x2) = exp(-0.5e6) = 0), unit
+  // scaling, signal k = s^2 and nugget n^2 fixed by the state: at each point the posterior mean is
+  // k / (k + n^2 + sigma_i^2) y_i, so the point measured with the larger scatter is followed less.
+  const double s2 = 2.0, n2 = 1e-3, var_small = 0.01, var_large = 3.0, y1 = 1.5, y2 = -1.5;
+  const nlohmann::json state = {{"kernel", "squared_exponential"},
+                                {"x_scale", {{"mean", {0.0}}, {"scale", {1.0}}}},
+                                {"y_scale", {{"mean", {0.0}}, {"scale", {1.0}}}},
+                                {"x", {{0.0}, {1.0}}},
+                                {"y", {{y1}, {y2}}},
+                                {"noise_var", {{var_small}, {var_large}}},
+                                {"theta", {{std::log(s2), std::log(1e-3), std::log(n2)}}}};
+  const GpModel m = GpModel::from_json(state, {});
+  Eigen::MatrixXd x(2, 1);
+  x << 0.0, 1.0;
+  const Eigen::MatrixXd p = m.predict(x);
+  EXPECT_NEAR(p(0, 0), s2 / (s2 + n2 + var_small) * y1, 1e-12);
+  EXPECT_NEAR(p(1, 0), s2 / (s2 + n2 + var_large) * y2, 1e-12);
+  EXPECT_GT(std::abs(p(1, 0) - y2), 10 * std::abs(p(0, 0) - y1)) << "the scattered point is followed less tightly";
+  // saved and loaded again, the known noise stays part of the model
+  const GpModel again = GpModel::from_json(m.to_json(), {});
+  EXPECT_EQ(again.predict(x), p);
+}
+
+TEST(SurrogateGp, AFittedPointWithALargeKnownScatterIsFollowedLessTightly) {
+  // A smooth response on a 5 x 5 grid with one point pushed off it: given a large known variance
+  // there, the fitted mean stays nearer the smooth response than when that point is said to be precise.
+  // The learnt nugget is pinned at its lower bound: only the known noise tells the points apart.
+  const Eigen::MatrixXd x = sm::test::study_grid(5, 5);
+  Eigen::MatrixXd y = sm::test::study_outputs(x).col(0);
+  const Eigen::Index odd = 12;  // the centre
+  const double range = y.maxCoeff() - y.minCoeff(), kick = 0.2 * range;
+  const double smooth = y(odd, 0);
+  y(odd, 0) += kick;
+  Eigen::MatrixXd precise = Eigen::MatrixXd::Constant(y.rows(), 1, std::pow(1e-3 * range, 2));
+  Eigen::MatrixXd scattered = precise;
+  scattered(odd, 0) = std::pow(0.5 * range, 2);
+  GpConfig pinned;
+  pinned.noise_max = pinned.noise_min;
+  GpModel a(pinned), b(pinned);
+  a.fit(x, y, precise);
+  b.fit(x, y, scattered);
+  const double miss_precise = std::abs(a.predict(x.row(odd))(0, 0) - y(odd, 0));
+  const double miss_scattered = std::abs(b.predict(x.row(odd))(0, 0) - y(odd, 0));
+  EXPECT_GT(miss_scattered, 2 * miss_precise);
+  EXPECT_LT(std::abs(b.predict(x.row(odd))(0, 0) - smooth), 0.5 * kick) << "nearer the smooth response than the kick";
+  EXPECT_THROW(a.fit(x, y, Eigen::MatrixXd::Constant(y.rows(), 1, -1.0)), std::invalid_argument);
+}

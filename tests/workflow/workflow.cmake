@@ -49,3 +49,10 @@ spreadmap_workflow_test(scenes SOURCES ${CMAKE_CURRENT_LIST_DIR}/scenes_test.cpp
 target_link_libraries(test_workflow_scenes PRIVATE spreadmap_workflow)  # calibrate's heap_angle
 # `spreadmap calibrate` on a small drum: kept runs, a changed scene, refusals (the round trip: integration/).
 spreadmap_workflow_test(calibrate SOURCES ${CMAKE_CURRENT_LIST_DIR}/calibrate_test.cpp TIMEOUT 300)
+# Replicates: different heaps per point, their mean and std in metrics.csv, the GP given their scatter.
+spreadmap_workflow_test(replicates SOURCES ${CMAKE_CURRENT_LIST_DIR}/replicates_test.cpp TIMEOUT 300)
+# The verify stage on a tiny version of workflows/quickstart_verify.yaml.
+spreadmap_workflow_test(verify SOURCES ${CMAKE_CURRENT_LIST_DIR}/verify_test.cpp TIMEOUT 300)
+if(TARGET spreadmap_render)
+  target_compile_definitions(test_workflow_verify PRIVATE SPREADMAP_TEST_FIGURES=1)
+endif()

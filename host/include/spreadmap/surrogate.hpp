@@ -9,6 +9,9 @@ typedef struct sm_dataset_v1 {
   uint32_t rows, n_in, n_out;
   const double *x;  // rows x n_in
   const double *y;  // rows x n_out
+  // rows x n_out, or NULL: the variance of each y that is known beforehand (y the mean of replicated
+  // runs: their scatter^2 / count), 0 where unknown. A model may add it to its own noise; it may ignore it.
+  const double *noise_var;
 } sm_dataset_v1;
 
 typedef struct sm_surrogate_ops_v1 {
@@ -23,5 +26,6 @@ typedef struct sm_surrogate_ops_v1 {
   // scales per output gives them as {"outputs": [{"signal_std": s, "noise_std": n}, ...]} in the
   // output's units; the host's train report shows them.
   const char *(*fit_info)(void *self);
+  int takes_noise_var;  // 1 when fit() uses sm_dataset_v1::noise_var (0: it is ignored)
 } sm_surrogate_ops_v1;
 }

@@ -266,13 +266,25 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
     c.polyline(line, {1, 1, 1}, 7.5 * s);  // halo keeps it visible on every band
     c.polyline(line, frontier_colour, 4.5 * s);
   }
+  const Rgb case_colour{1, 1, 1};
+  for (const auto& q : in.cases) {
+    const Point2 p = f.at(q.u * 1e3, q.omega);
+    c.marker(p[0], p[1], Marker::circle, 15 * s, case_colour, {0, 0, 0});
+  }
+  // proposed: green; verified by simulation: blue; simulated outside its interval: red
+  const Rgb optimum_colour = in.optimum.verified < 0    ? Rgb{0.2, 0.95, 0.3}
+                             : in.optimum.verified == 1 ? Rgb{0.1, 0.55, 1.0}
+                                                        : Rgb{0.95, 0.15, 0.1};
+  const std::string optimum_name = in.optimum.verified < 0    ? "optimum (proposed)"
+                                   : in.optimum.verified == 1 ? "optimum, verified"
+                                                              : "optimum, NOT verified";
   if (in.optimum.found) {
     const Point2 p = f.at(in.optimum.u * 1e3, in.optimum.omega);
-    c.marker(p[0], p[1], Marker::star, 44 * s, {0.2, 0.95, 0.3}, {0, 0, 0});
+    c.marker(p[0], p[1], Marker::star, 44 * s, optimum_colour, {0, 0, 0});
     char label[256];
-    std::snprintf(label, sizeof label, "optimum\nU = %.1f mm/s, %s = %.1f rad/s\nV_s = %.3g %s, R_q = %.1f %s%s",
-                  in.optimum.u * 1e3, w.c_str(), in.optimum.omega, in.optimum.vs * 1e6, mm2s.c_str(),
-                  in.optimum.rq * 1e6, um.c_str(), "");
+    std::snprintf(label, sizeof label, "%s\nU = %.1f mm/s, %s = %.1f rad/s\nV_s = %.3g %s, R_q = %.1f %s%s",
+                  optimum_name.c_str(), in.optimum.u * 1e3, w.c_str(), in.optimum.omega, in.optimum.vs * 1e6,
+                  mm2s.c_str(), in.optimum.rq * 1e6, um.c_str(), "");
     std::string text = label;
     if (in.rq_target > 0) {
       char t[64];
@@ -311,7 +323,9 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
     legend.push_back(
         {std::string(unicode_text() ? "σ" : "std") + "(R_q) model [" + um + "]", std_colour, true, LineStyle::dashed});
   if (in.frontier.size() >= 2) legend.push_back({"efficient frontier", frontier_colour, true});
-  if (in.optimum.found) legend.push_back({"optimum", {0.2, 0.95, 0.3}, false, LineStyle::solid, true, Marker::star});
+  if (!in.cases.empty())
+    legend.push_back({"simulated cases", case_colour, false, LineStyle::solid, true, Marker::circle, {0, 0, 0}});
+  if (in.optimum.found) legend.push_back({optimum_name, optimum_colour, false, LineStyle::solid, true, Marker::star});
   c.legend(col_x - 20 * s, f.py0 + 0.38 * f.ph, legend, 19 * s);
   fig.add_title();
   fig.write(png);

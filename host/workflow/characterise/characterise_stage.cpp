@@ -1,82 +1,38 @@
 // characterise: the layer metrics of every finished case (metrics.json and heightmap.vti in the
 // case folder), gathered in metrics.csv with one row per case and the unit of every column in
 // metrics.units.json. A case whose state and settings did not change is not evaluated again.
+// Replicated points (simulate: replicates) get one row per point in metrics.csv (each metric's
+// mean, its _std over the replicates, and `replicates`); every run's own row is kept in
+// metrics_replicates.csv.
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
+#include "analysis/replicates.hpp"
 #include "analysis/table.hpp"
 #include "core/error.hpp"
 #include "core/files.hpp"
-#include "core/heightmap_vti.hpp"
-#include "core/schema.hpp"
-#include "core/units.hpp"
-#include "workflow/simulate/case_setup.hpp"
-#include "workflow/figures/figure_style.hpp"
-#include "workflow/figures/stage_figures.hpp"
-#include "workflow/characterise/layer_eval.hpp"
+#include "workflow/characterise/case_metrics.hpp"
 #include "workflow/stage.hpp"
 
 namespace spreadmap {
 namespace {
 
-const std::set<std::string> host_keys = {"use", "region", "render"};
-
 class CharacteriseStage : public Stage {
  public:
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
-    const std::string file = wf.file.string();
-    const YAML::Node &cfg = entry.config;
-    request_.plugin = cfg["use"] ? cfg["use"].as<std::string>() : "layer";
-    const LoadedPlugin *plugin = nullptr;
-    try {
-      plugin = &registry.get("metrics", request_.plugin);
-    } catch (const std::exception &e) {
-      diag.error(Location::of(file, cfg["use"] ? cfg["use"] : cfg), "characterise.use", e.what());
-    }
-    if (plugin)
-      request_.params =
-          validate_params(SchemaView::of(*plugin->descriptor), cfg, file, "characterise", diag, host_keys);
-    if (!scene) return;
-    try {
-      region_ = default_region(*scene, describe_spreader(*scene, registry, file));
-    } catch (const std::exception &) {
-      return;  // the scene's own checks report the spreader's error
-    }
-    if (const YAML::Node r = cfg["region"]) {
-      if (!r.IsMap()) {
-        diag.error(Location::of(file, r), "characterise.region", "must be a map",
-                   "write region: {x: [14 mm, 24 mm], y: [0 mm, 2.5 mm]}");
-      } else {
-        for (const auto &kv : r)
-          if (kv.first.as<std::string>() != "x" && kv.first.as<std::string>() != "y")
-            diag.error(Location::of(file, kv.first), "characterise.region." + kv.first.as<std::string>(), "unknown key",
-                       "known: x, y");
-        read_bounds(r["x"], file, "characterise.region.x", region_.x0, region_.x1, diag);
-        read_bounds(r["y"], file, "characterise.region.y", region_.y0, region_.y1, diag);
-      }
-    }
-    const double length = scene->domain.length, width = scene->domain.width;
-    if (region_.x0 < 0 || region_.x1 > length || region_.y0 < 0 || region_.y1 > width || region_.x1 <= region_.x0 ||
-        region_.y1 <= region_.y0)
-      diag.error(
-          Location::of(file, cfg["region"] ? cfg["region"] : entry.config), "characterise.region",
-          fmt::format("x {}..{} mm, y {}..{} mm is not inside the domain (0..{} mm by 0..{} mm)", region_.x0 * 1e3,
-                      region_.x1 * 1e3, region_.y0 * 1e3, region_.y1 * 1e3, length * 1e3, width * 1e3),
-          "set characterise.region: {x: [A mm, B mm], y: [C mm, D mm]} inside the domain");
-    style_ = figures::read_style(cfg["render"], true, false, file, "characterise.render", diag);
-    render_ = style_.on;
+    settings_ = read_characterise_settings(wf, entry.config, scene, registry, diag);
   }
 
   void run(StageContext &ctx) override {
-    figures::use_style(style_);
+    figures::use_style(settings_.style);
     const nlohmann::json manifest = ctx.run.manifest();
     if (!manifest.contains("cases") || manifest["cases"].empty())
       throw InputError("error: characterise: " + ctx.run.root().string() +
                        " has no simulated cases; run the simulate stage first (spreadmap run " + ctx.wf.file.string() +
                        ")");
-    const std::string settings =
-        stable_hash(request_.params.dump() + nlohmann::json({region_.x0, region_.x1, region_.y0, region_.y1}).dump() +
-                    request_.plugin);
+    const std::string settings = settings_hash(settings_);
     std::vector<std::string> inputs;
     for (const auto &v : manifest["design"].value("variables", nlohmann::json::array())) inputs.push_back(v["name"]);
 
@@ -89,22 +45,12 @@ class CharacteriseStage : public Stage {
         ++missing;
         continue;
       }
-      const fs::path out = dir / "metrics.json";
       const std::string key = stable_hash(settings + c.value("hash", ""));
-      nlohmann::json doc;
-      if (!ctx.options.force && fs::exists(out)) {
-        try {
-          doc = nlohmann::json::parse(read_text(out));
-          if (doc.value("key", "") != key) doc = nullptr;
-        } catch (...) {
-          doc = nullptr;
-        }
-      }
-      if (doc.is_null()) {
-        doc = evaluate(ctx, dir, id, key);
-        ++evaluated;
-      }
+      bool now = false;
+      nlohmann::json doc = case_metrics(ctx.registry, settings_, dir, id, key, ctx.options.force, now);
+      evaluated += now;
       doc["inputs"] = c["inputs"];
+      if (c.contains("point")) doc["point"] = c["point"], doc["replicate"] = c["replicate"];
       results.push_back(doc);
     }
     if (missing)
@@ -116,22 +62,6 @@ class CharacteriseStage : public Stage {
   }
 
  private:
-  static void read_bounds(const YAML::Node &n, const std::string &file, const std::string &key, double &lo, double &hi,
-                          Diagnostics &diag) {
-    if (!n) return;
-    if (!n.IsSequence() || n.size() != 2) {
-      diag.error(Location::of(file, n), key, "must be a pair [low, high] of lengths", "e.g. [14 mm, 24 mm]");
-      return;
-    }
-    try {
-      const double a = parse_in(n[0].as<std::string>(), "m"), b = parse_in(n[1].as<std::string>(), "m");
-      lo = a;
-      hi = b;
-    } catch (const std::exception &e) {
-      diag.error(Location::of(file, n), key, e.what(), "write lengths with units, e.g. [14 mm, 24 mm]");
-    }
-  }
-
   static bool case_done(const fs::path &dir, const std::string &hash) {
     std::error_code ec;
     if (!fs::exists(dir / "case.json", ec) || !fs::exists(dir / "state.vtp", ec)) return false;
@@ -141,35 +71,6 @@ class CharacteriseStage : public Stage {
     } catch (...) {
       return false;
     }
-  }
-
-  nlohmann::json evaluate(StageContext &ctx, const fs::path &dir, const std::string &id, const std::string &key) {
-    const Scene scene = read_scene_file(dir / "scene.json");
-    const auto particles = read_particle_file(dir / "state.vtp");
-    LayerRequest rq = request_;
-    rq.region = region_;
-    if (scene.domain.periodic_y) rq.periodic_y = std::make_pair(0.0, scene.domain.width);
-    take_spreader(rq, describe_spreader(scene, ctx.registry, dir / "scene.json"));
-    const LayerResult r = characterise_layer(ctx.registry, rq, particles);
-    for (const auto &w : r.warnings) spdlog::warn("{}: {}", id, w);
-    if (!r.height.empty()) write_heightmap_vti(dir / "heightmap.vti", r.nx, r.ny, r.x0, r.y0, r.cell, r.height.data());
-    nlohmann::json doc = {{"case", id},
-                          {"key", key},
-                          {"plugin", "metrics/" + rq.plugin},
-                          {"region", {{"x", {rq.region.x0, rq.region.x1}}, {"y", {rq.region.y0, rq.region.y1}}}},
-                          {"metrics", r.metrics},
-                          {"units", r.units},
-                          {"warnings", r.warnings}};
-    write_atomic(dir / "metrics.json", doc.dump(2) + "\n");
-    if (render_) {
-      const auto m = r.metrics;
-      auto um = [&](const char *k) {
-        return m.value(k, nlohmann::json()).is_number() ? m[k].get<double>() * 1e6 : std::nan("");
-      };
-      figures::heightmap(r, dir / "heightmap.png",
-                         fmt::format("{}: mean height {:.0f} um, R_q {:.0f} um", id, um("mean_height"), um("rq")));
-    }
-    return doc;
   }
 
   void write_table(StageContext &ctx, const std::vector<std::string> &inputs, const nlohmann::json &manifest,
@@ -203,14 +104,33 @@ class CharacteriseStage : public Stage {
       }
       table.add_row(row);
     }
-    table.write_csv(ctx.run.metrics_csv().string());
+    const bool replicated =
+        std::any_of(results.begin(), results.end(), [](const auto &r) { return r.contains("point"); });
+    if (!replicated) {
+      table.write_csv(ctx.run.metrics_csv().string());
+      write_atomic(ctx.run.root() / "metrics.units.json", units.dump(2) + "\n");
+      return;
+    }
+    // every run's row, with its point and replicate; metrics.csv summarises them per point
+    std::vector<std::string> point, replicate;
+    for (const auto &r : results)
+      point.push_back(r.value("point", r["case"].get<std::string>())),
+          replicate.push_back(std::to_string(r.value("replicate", 0)));
+    table.add_column("point", point);
+    table.add_column("replicate", replicate);
+    nlohmann::json run_units = units;
+    run_units["point"] = "", run_units["replicate"] = "";
+    table.write_csv((ctx.run.root() / "metrics_replicates.csv").string());
+    write_atomic(ctx.run.root() / "metrics_replicates.units.json", run_units.dump(2) + "\n");
+    for (const auto &m : present)
+      if (units.contains(m)) units[analysis::std_column(m)] = units[m];
+    units[analysis::replicates_column()] = "";
+    analysis::summarise_replicates(table, "point", inputs, present, "metrics.csv")
+        .write_csv(ctx.run.metrics_csv().string());
     write_atomic(ctx.run.root() / "metrics.units.json", units.dump(2) + "\n");
   }
 
-  LayerRequest request_;
-  Region region_;
-  figures::Style style_;
-  bool render_ = true;
+  CharacteriseSettings settings_;
 };
 
 }  // namespace

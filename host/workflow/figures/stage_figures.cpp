@@ -51,7 +51,7 @@ void surfaces(const analysis::GridMap &, const std::vector<std::string> &, const
   unavailable();
 }
 void process_map(const analysis::GridMap &, std::size_t, std::size_t, const analysis::Table &,
-                 const std::vector<analysis::Optimum> &, const fs::path &) {
+                 const std::vector<analysis::Optimum> &, const fs::path &, const analysis::Table &, int) {
   unavailable();
 }
 void tradeoff(const std::vector<TradeoffRow> &, double, double, const fs::path &) { unavailable(); }
@@ -230,7 +230,8 @@ void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &uni
 }
 
 void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
-                 const std::vector<analysis::Optimum> &optima, const fs::path &png) {
+                 const std::vector<analysis::Optimum> &optima, const fs::path &png, const analysis::Table &cases,
+                 int verified) {
   const PlaneGrid p = plane(grid);
   if (!p.ok) return;
   guarded(png, [&] {
@@ -250,8 +251,12 @@ void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, 
     }
     if (!optima.empty() && optima.front().found) {
       const auto &o = optima.front();
-      in.optimum = {true, o.x(0), o.x(1), o.vs, o.rq};
+      in.optimum = {true, o.x(0), o.x(1), o.vs, o.rq, verified};
       in.rq_target = o.rq_max;
+    }
+    if (cases.has_column(grid.inputs[0]) && cases.has_column(grid.inputs[1])) {
+      const auto u = cases.numbers(grid.inputs[0]), w = cases.numbers(grid.inputs[1]);
+      for (std::size_t i = 0; i < u.size(); ++i) in.cases.push_back({u[i], w[i]});
     }
     render::process_map(in, png, sized(1600, 1100, "Process map: R_q (filled) and V_s (lines)"));
   });

@@ -39,9 +39,12 @@ void parity(const analysis::Report &report, const std::vector<std::string> &outp
 // u_col / omega_col: the grid's input columns; points: rows of (U, omega, outputs...) from training.
 void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &units, const analysis::Table &data,
               const fs::path &dir);
-// The process map: V_s and R_q contours over (U, omega), the frontier and the optimum.
+// The process map: V_s and R_q contours over (U, omega), the frontier, the simulated cases (the
+// grid's input columns of `cases`, when it has them) and the first optimum, marked as proposed
+// (verified < 0), verified by simulation (1) or simulated outside its interval (0).
 void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
-                 const std::vector<analysis::Optimum> &optima, const fs::path &png);
+                 const std::vector<analysis::Optimum> &optima, const fs::path &png,
+                 const analysis::Table &cases = analysis::Table(), int verified = -1);
 
 // The speed-accuracy trade: |error| of each fidelity against the reference over its wall time.
 struct TradeoffRow {

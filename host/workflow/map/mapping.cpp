@@ -66,7 +66,9 @@ void write_process_map(const MapResult &m, const analysis::ModelFile &file, cons
   std::vector<std::string> out_units;
   for (const auto &v : file.outputs) out_units.push_back(v.unit);
   figures::surfaces(m.grid, out_units, training ? *training : analysis::Table(), dir);
-  if (m.vs && m.rq) figures::process_map(m.grid, *m.vs, *m.rq, m.frontier, m.optima, dir / "map.png");
+  if (m.vs && m.rq)
+    figures::process_map(m.grid, *m.vs, *m.rq, m.frontier, m.optima, dir / "map.png",
+                         training ? *training : analysis::Table());
 }
 
 std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t inputs) {

@@ -1,6 +1,7 @@
 // simulate: hands every unfinished case of the design to the run's executor (here in --jobs threads,
 // on MPI ranks or as Slurm tasks), each resumable; a finished case whose inputs did not change is
-// never recomputed.
+// never recomputed. With `replicates: N` each design point runs N times with independent heaps
+// (simulate/replicates.hpp): the runs are numbered point by point (point i, replicate r: i * N + r).
 #include <spdlog/spdlog.h>
 
 #include "core/error.hpp"
@@ -10,6 +11,7 @@
 #include "workflow/simulate/adaptive_run.hpp"
 #include "workflow/simulate/coarse_grain.hpp"
 #include "workflow/simulate/design.hpp"
+#include "workflow/simulate/replicates.hpp"
 #include "workflow/executors/executor_hook.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/figures/stage_figures.hpp"
@@ -29,17 +31,22 @@ class SimulateStage : public Stage {
         style_ = figures::read_style(kv.second, true, true, file, "simulate.render", diag);
         render_ = style_.on;
       }
-      if (key != "design" && key != "render")
-        diag.error(Location::of(file, kv.first), "simulate." + key, "unknown key", "known: design, render");
+      if (key != "design" && key != "render" && key != "replicates")
+        diag.error(Location::of(file, kv.first), "simulate." + key, "unknown key", "known: design, render, replicates");
     }
+    replicates_ = read_replicates(entry.config["replicates"], file, "simulate.replicates", 1, diag);
     if (!scene) return;  // scene errors already reported
     design_ = parse_design(entry.config["design"], file, "simulate.design", *scene, registry, diag);
+    if (design_.type == "adaptive" && replicates_ > 1)
+      diag.error(Location::of(file, entry.config["replicates"]), "simulate.replicates",
+                 "an adaptive design runs one heap per case",
+                 "remove replicates, or use a full_factorial or list design");
   }
 
   void run(StageContext &ctx) override {
     figures::use_style(style_);
     if (design_.type == "adaptive") return run_adaptive_design(ctx, design_, render_);
-    const std::size_t n = design_.cases.size();
+    const std::size_t n = design_.cases.size() * replicates_;
     const auto &only_case = ctx.options.only_case;
     if (only_case && *only_case >= n)
       throw InputError("error: --case " + std::to_string(*only_case) + ": the design has " + std::to_string(n) +
@@ -48,14 +55,16 @@ class SimulateStage : public Stage {
     nlohmann::json cases = nlohmann::json::array();
     for (std::size_t i = 0; i < n; ++i) {
       if (only_case && i != *only_case) continue;
+      const std::size_t point = i / replicates_, replicate = i % replicates_;
       CaseRequest req;
-      req.id = RunDirectory::case_id(i);
-      req.scene = case_scene(ctx.scene, design_, i);
-      req.inputs = case_inputs(design_, i);
+      req.id = replicate_id(RunDirectory::case_id(point), replicate);
+      req.scene = replicate_scene(case_scene(ctx.scene, design_, point), replicate);
+      req.inputs = case_inputs(design_, point);
       req.dir = ctx.run.case_dir(req.id);
       req.heaps = ctx.run.heaps();
       const std::string hash = case_hash(req.scene);
       cases.push_back({{"id", req.id}, {"inputs", req.inputs}, {"hash", hash}});
+      if (replicates_ > 1) cases.back()["point"] = RunDirectory::case_id(point), cases.back()["replicate"] = replicate;
       if (!ctx.options.force && case_finished(req.dir, hash)) continue;
       if (ctx.options.force) {
         std::error_code ec;
@@ -85,6 +94,7 @@ class SimulateStage : public Stage {
                                                     v.push_back({{"name", d.key.name}, {"unit", d.key.param->unit}});
                                                   return v;
                                                 }()}};
+        if (replicates_ > 1) m["design"]["replicates"] = replicates_;
         m["plugins"]["contact/" + ctx.scene.contact.use] =
             ctx.registry.get("contact", ctx.scene.contact.use).descriptor->version;
         m["plugins"]["spreader/" + ctx.scene.spreader.use] =
@@ -94,7 +104,10 @@ class SimulateStage : public Stage {
       spdlog::info("simulate: case {} of {}: {}", RunDirectory::case_id(*only_case), n,
                    batch.jobs.empty() ? "finished already" : "to run");
     else
-      spdlog::info("simulate: {} cases, {} to run, {} finished already", n, batch.jobs.size(), n - batch.jobs.size());
+      spdlog::info(
+          "simulate: {} cases{}, {} to run, {} finished already", n,
+          replicates_ > 1 ? fmt::format(" ({} points x {} replicates)", design_.cases.size(), replicates_) : "",
+          batch.jobs.size(), n - batch.jobs.size());
     std::string backend_note;  // throws InputError for `cuda` with no usable device, before any case runs
     cuda::choose_backend(ctx.scene.backend, backend_note);
     ctx.options.executor->run_cases(batch, ctx);
@@ -102,6 +115,7 @@ class SimulateStage : public Stage {
 
  private:
   Design design_;
+  std::size_t replicates_ = 1;
   figures::Style style_;
   bool render_ = true;
 };

@@ -7,6 +7,7 @@
 
 #include "analysis/cross_validation.hpp"
 #include "analysis/plugin_model.hpp"
+#include "analysis/replicates.hpp"
 #include "analysis/scores.hpp"
 #include "analysis/split.hpp"
 #include "core/error.hpp"
@@ -103,8 +104,19 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   const Split split = split_rows(table, rows, v, rq.seed);
   if (split.train.size() < 2) throw InputError("error: train: fewer than 2 training rows in " + table.source());
 
+  // Rows that are means of replicated runs carry their scatter: the model takes it as known noise.
+  const Eigen::MatrixXd noise = analysis::replicate_noise_variance(table, rq.outputs, rows);
   auto model = make();
-  model->fit(x(split.train, Eigen::all), y(split.train, Eigen::all));
+  const bool known_noise = (noise.array() > 0).any() && model->takes_noise();
+  if (known_noise)
+    spdlog::info("train {}: the replicate scatter of {} rows is given to the model as their known noise", rq.model,
+                 (noise.array() > 0).rowwise().any().count());
+  else if ((noise.array() > 0).any())
+    spdlog::info("train {}: surrogate/{} takes no known noise: it fits the replicates' means alone", rq.model,
+                 rq.model);
+  if (known_noise)
+    model->fit_with_noise(x(split.train, Eigen::all), y(split.train, Eigen::all), noise(split.train, Eigen::all));
+  else model->fit(x(split.train, Eigen::all), y(split.train, Eigen::all));
   analysis::Report report = analysis::make_report(*model, x, y, split, rq.outputs);
   report.split = analysis::spelling(v), report.split_reason = v.reason;
 
@@ -127,7 +139,8 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   for (const auto &o : rq.outputs) cv_names.push_back(o + "_true"), cv_names.push_back(o + "_cv");
   analysis::Table cv_table(cv_names, "cv.csv");
   if (n_cv >= min_cv_rows) {
-    const auto cv = analysis::cross_validate(make, x, y, split.train, analysis::k_fold(n_cv, k, rq.seed));
+    const auto cv = analysis::cross_validate(make, x, y, split.train, analysis::k_fold(n_cv, k, rq.seed),
+                                             known_noise ? noise : Eigen::MatrixXd());
     analysis::score_cross_validation(report, cv, y);
     for (std::size_t i = 0; i < cv.rows.size(); ++i) {
       std::vector<std::string> cells = {case_of(cv.rows[i]), std::to_string(cv.fold[i])};

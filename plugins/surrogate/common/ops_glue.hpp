@@ -1,6 +1,7 @@
 // Builds an sm_surrogate_ops_v1 table from the plugin's C++ class (the one SPREADMAP_PLUGIN
 // creates), so each plugin writes only its model glue. The class provides:
 //   void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y);
+//     or, to take the dataset's known noise: fit(x, y, noise_var) (noise_var empty when none is given)
 //   Eigen::MatrixXd predict(const Eigen::MatrixXd &x, Eigen::MatrixXd *std) const;  // std may be null
 //   nlohmann::json state() const;  void load(const nlohmann::json &);  nlohmann::json info() const;
 //   int n_inputs() const;  static constexpr int has_std;
@@ -29,7 +30,14 @@ template <class Self> struct OpsGlue {
       if (!d || !d->x || !d->y) throw std::invalid_argument("fit: no data");
       const Eigen::MatrixXd x = Eigen::Map<const RowMajor>(d->x, d->rows, d->n_in);
       const Eigen::MatrixXd y = Eigen::Map<const RowMajor>(d->y, d->rows, d->n_out);
-      static_cast<Self *>(self)->fit(x, y);
+      Self &model = *static_cast<Self *>(self);
+      if constexpr (takes_noise_var) {
+        Eigen::MatrixXd noise;
+        if (d->noise_var) noise = Eigen::Map<const RowMajor>(d->noise_var, d->rows, d->n_out);
+        model.fit(x, y, noise);
+      } else {
+        model.fit(x, y);
+      }
       return 0;
     } catch (const std::exception &e) {
       return fail(err, e);
@@ -70,7 +78,9 @@ template <class Self> struct OpsGlue {
     s->info_text = s->info().dump();
     return s->info_text.c_str();
   }
-  static constexpr sm_surrogate_ops_v1 table{Self::has_std, &fit, &predict, &save, &load, &fit_info};
+  static constexpr int takes_noise_var = requires(Self & m, const Eigen::MatrixXd &a) { m.fit(a, a, a); }
+  ? 1 : 0;
+  static constexpr sm_surrogate_ops_v1 table{Self::has_std, &fit, &predict, &save, &load, &fit_info, takes_noise_var};
 };
 
 }  // namespace spreadmap::surrogate

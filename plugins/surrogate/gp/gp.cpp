@@ -51,7 +51,10 @@ struct Gp {
     return Gp{ss::GpModel(c), {}, {}};
   }
 
-  void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y) { model.fit(x, y); }
+  // noise_var: the dataset's known variances (the replicate scatter of each mean), added to the nugget
+  void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y, const Eigen::MatrixXd &noise_var) {
+    model.fit(x, y, noise_var);
+  }
   int n_inputs() const {
     if (!model.fitted()) throw std::logic_error("surrogate/gp: predict() before fit() or load()");
     return model.n_inputs();

@@ -61,13 +61,14 @@ MatrixXd GpModel::kernel(const VectorXd &theta, const MatrixXd &a, const MatrixX
   return k;
 }
 
-double GpModel::negative_log_likelihood(const VectorXd &theta, const MatrixXd &xs, const VectorXd &ys,
-                                        VectorXd *grad) const {
+double GpModel::negative_log_likelihood(const VectorXd &theta, const MatrixXd &xs, const VectorXd &ys, VectorXd *grad,
+                                        const VectorXd *known) const {
   const Eigen::Index n = xs.rows();
   const int d = int(xs.cols());
   const double noise = std::exp(theta[d + 1]);
   MatrixXd k = kernel(theta, xs, xs);
   k.diagonal().array() += noise;
+  if (known) k.diagonal() += *known;
   const Eigen::LLT<MatrixXd> llt(k);
   if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
   const VectorXd alpha = llt.solve(ys);
@@ -93,9 +94,9 @@ double GpModel::negative_log_likelihood(const VectorXd &theta, const MatrixXd &x
   return value;
 }
 
-double GpModel::negative_log_posterior(const VectorXd &theta, const MatrixXd &xs, const VectorXd &ys,
-                                       VectorXd *grad) const {
-  double value = negative_log_likelihood(theta, xs, ys, grad);
+double GpModel::negative_log_posterior(const VectorXd &theta, const MatrixXd &xs, const VectorXd &ys, VectorXd *grad,
+                                       const VectorXd *known) const {
+  double value = negative_log_likelihood(theta, xs, ys, grad, known);
   if (config_.noise_prior_width <= 0 || !std::isfinite(value)) return value;
   // log-normal prior on the noise share n^2: log n^2 ~ N(log median, width^2)
   const int d = int(xs.cols());
@@ -105,10 +106,13 @@ double GpModel::negative_log_posterior(const VectorXd &theta, const MatrixXd &xs
   return value;
 }
 
-void GpModel::prepare(Output &out, const VectorXd &ys) const {
+const VectorXd *GpModel::known_noise(std::size_t c) const { return c < known_.size() ? &known_[c] : nullptr; }
+
+void GpModel::prepare(Output &out, const VectorXd &ys, const VectorXd *known) const {
   const int d = int(xs_.cols());
   MatrixXd k = kernel(out.theta, xs_, xs_);
   k.diagonal().array() += std::exp(out.theta[d + 1]);
+  if (known) k.diagonal() += *known;
   const Eigen::LLT<MatrixXd> llt(k);
   if (llt.info() != Eigen::Success)
     throw std::runtime_error("gp: the covariance matrix is not positive definite; raise noise_min");
@@ -119,8 +123,12 @@ void GpModel::prepare(Output &out, const VectorXd &ys) const {
   out.lml = -(0.5 * ys.dot(out.alpha) + out.chol.diagonal().array().log().sum() + 0.5 * double(ys.size()) * log_2pi);
 }
 
-void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
+void GpModel::fit(const MatrixXd &x, const MatrixXd &y, const MatrixXd &noise_var) {
   if (x.rows() != y.rows()) throw std::invalid_argument("gp: inputs and outputs differ in row count");
+  if (noise_var.size() && (noise_var.rows() != y.rows() || noise_var.cols() != y.cols()))
+    throw std::invalid_argument("gp: the known noise variances are not one per output value");
+  if (noise_var.size() && (!noise_var.allFinite() || noise_var.minCoeff() < 0))
+    throw std::invalid_argument("gp: a known noise variance is negative, NaN or infinite");
   if (x.rows() < 2 || x.cols() < 1 || y.cols() < 1)
     throw std::invalid_argument("gp: need >= 2 rows, >= 1 input and output");
   if (!x.allFinite() || !y.allFinite()) throw std::invalid_argument("gp: training data contain NaN or infinity");
@@ -128,6 +136,7 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
   x_train_ = x, y_train_ = y;
   x_scale_ = Standardiser::fit(x), y_scale_ = Standardiser::fit(y);
   xs_ = x_scale_.forward(x);
+  set_known_noise(noise_var);
   const MatrixXd ys_all = y_scale_.forward(y);
   const int d = int(x.cols());
   VectorXd lo, hi;
@@ -153,7 +162,10 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
   for (Eigen::Index c = 0; c < y.cols(); ++c) {
     const VectorXd ys = ys_all.col(c);
     Random rng(config_.seed + std::uint64_t(c) * 0x9e3779b97f4a7c15ULL);
-    const auto objective = [&](const VectorXd &t, VectorXd &g) { return negative_log_posterior(t, xs_, ys, &g); };
+    const VectorXd *known = known_noise(std::size_t(c));
+    const auto objective = [&](const VectorXd &t, VectorXd &g) {
+      return negative_log_posterior(t, xs_, ys, &g, known);
+    };
     double best = std::numeric_limits<double>::infinity();
     Output &out = outputs_[std::size_t(c)];
     for (int start = 0; start < config_.restarts; ++start) {
@@ -171,7 +183,17 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y) {
       if (std::isfinite(r.value) && r.value < best) best = r.value, out.theta = t, out.iterations = r.iterations;
     }
     if (!std::isfinite(best)) throw std::runtime_error("gp: no start gave a finite likelihood; raise noise_min");
-    prepare(out, ys);
+    prepare(out, ys, known);
+  }
+}
+
+void GpModel::set_known_noise(const MatrixXd &noise_var) {
+  noise_var_ = noise_var;
+  known_.clear();
+  if (noise_var.size() == 0) return;
+  for (Eigen::Index c = 0; c < noise_var.cols(); ++c) {
+    const double scale = y_scale_.scale[c];
+    known_.push_back(noise_var.col(c) / (scale * scale));
   }
 }
 
@@ -227,8 +249,11 @@ MatrixXd matrix_from_json(const nlohmann::json &j, Eigen::Index cols, const char
 nlohmann::json GpModel::to_json() const {
   nlohmann::json thetas = nlohmann::json::array();
   for (const auto &o : outputs_) thetas.push_back(std::vector<double>(o.theta.data(), o.theta.data() + o.theta.size()));
-  return {{"kernel", name_of(config_.kernel)}, {"x_scale", x_scale_.to_json()}, {"y_scale", y_scale_.to_json()},
-          {"x", matrix_json(x_train_)},        {"y", matrix_json(y_train_)},    {"theta", thetas}};
+  nlohmann::json j = {{"kernel", name_of(config_.kernel)}, {"x_scale", x_scale_.to_json()},
+                      {"y_scale", y_scale_.to_json()},     {"x", matrix_json(x_train_)},
+                      {"y", matrix_json(y_train_)},        {"theta", thetas}};
+  if (noise_var_.size()) j["noise_var"] = matrix_json(noise_var_);  // absent: none given
+  return j;
 }
 
 GpModel GpModel::from_json(const nlohmann::json &j, GpConfig config) {
@@ -242,6 +267,9 @@ GpModel GpModel::from_json(const nlohmann::json &j, GpConfig config) {
   if (m.x_train_.rows() != m.y_train_.rows() || m.x_train_.rows() < 1)
     throw std::invalid_argument("gp state: x and y differ in rows");
   m.xs_ = m.x_scale_.forward(m.x_train_);
+  m.set_known_noise(j.contains("noise_var") ? matrix_from_json(j.at("noise_var"), n_out, "noise_var") : MatrixXd());
+  if (m.noise_var_.size() && m.noise_var_.rows() != m.y_train_.rows())
+    throw std::invalid_argument("gp state: noise_var and y differ in rows");
   const MatrixXd ys = m.y_scale_.forward(m.y_train_);
   const auto &thetas = j.at("theta");
   if (Eigen::Index(thetas.size()) != n_out) throw std::invalid_argument("gp state: one theta per output expected");
@@ -250,7 +278,7 @@ GpModel GpModel::from_json(const nlohmann::json &j, GpConfig config) {
     const auto t = thetas.at(std::size_t(c)).get<std::vector<double>>();
     if (Eigen::Index(t.size()) != d + 2) throw std::invalid_argument("gp state: theta has the wrong length");
     m.outputs_[std::size_t(c)].theta = Eigen::Map<const VectorXd>(t.data(), Eigen::Index(t.size()));
-    m.prepare(m.outputs_[std::size_t(c)], ys.col(c));
+    m.prepare(m.outputs_[std::size_t(c)], ys.col(c), m.known_noise(std::size_t(c)));
   }
   return m;
 }

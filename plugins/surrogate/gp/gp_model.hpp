@@ -10,8 +10,11 @@
 // the likelihood's flat valley from sliding to interpolation), by analytic gradient and bounded
 // L-BFGS from `restarts` starts: the first at s = l = 1, the others drawn from a seeded generator;
 // the best wins. noise_prior_width = 0 gives the plain marginal likelihood (scikit-learn's).
-// Predictions: the posterior mean and the standard deviation of the latent function (without the
-// noise). Leave-one-out predictions come in closed form, mu_-i = y_i - alpha_i / [K^-1]_ii (R&W 5.12).
+// Per-row noise known beforehand (fit's noise_var: the scatter^2 / count of replicated runs) is added
+// to the diagonal on top of the learnt nugget, so a point measured less precisely is followed less
+// tightly (heteroscedastic noise). Predictions: the posterior mean and the standard deviation of the
+// latent function (without the noise). Leave-one-out predictions come in closed form, mu_-i = y_i - alpha_i / [K^-1]_ii
+// (R&W 5.12).
 #pragma once
 #include <Eigen/Dense>
 #include <nlohmann/json.hpp>
@@ -44,7 +47,8 @@ class GpModel {
  public:
   explicit GpModel(GpConfig config = {}) : config_(config) {}
 
-  void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y);
+  // noise_var: rows x outputs of known variances in the outputs' units squared (0: none), or empty.
+  void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y, const Eigen::MatrixXd &noise_var = {});
   // Posterior mean (rows x outputs); the latent standard deviation into *std when not null.
   Eigen::MatrixXd predict(const Eigen::MatrixXd &x, Eigen::MatrixXd *std = nullptr) const;
   // Closed-form leave-one-out predictions at the training rows (raw units).
@@ -53,13 +57,14 @@ class GpModel {
   int n_inputs() const { return int(x_train_.cols()); }
 
   // -log marginal likelihood of standardised data at log-hyperparameters theta, with gradient.
-  // Returns +inf when K is not positive definite. Public for the gradient test.
+  // Returns +inf when K is not positive definite. Public for the gradient test. `known`: per-row
+  // variances (standardised) added to the diagonal, or null.
   double negative_log_likelihood(const Eigen::VectorXd &theta, const Eigen::MatrixXd &xs, const Eigen::VectorXd &ys,
-                                 Eigen::VectorXd *grad) const;
+                                 Eigen::VectorXd *grad, const Eigen::VectorXd *known = nullptr) const;
 
   // The same plus the noise prior's -log density (up to a constant): what the fit minimises.
   double negative_log_posterior(const Eigen::VectorXd &theta, const Eigen::MatrixXd &xs, const Eigen::VectorXd &ys,
-                                Eigen::VectorXd *grad) const;
+                                Eigen::VectorXd *grad, const Eigen::VectorXd *known = nullptr) const;
 
   nlohmann::json to_json() const;  // state: kernel, scaling, training data, theta per output
   static GpModel from_json(const nlohmann::json &j, GpConfig config);
@@ -76,12 +81,17 @@ class GpModel {
     long iterations = 0;
   };
   Eigen::MatrixXd kernel(const Eigen::VectorXd &theta, const Eigen::MatrixXd &a, const Eigen::MatrixXd &b) const;
-  void prepare(Output &out, const Eigen::VectorXd &ys) const;  // chol, alpha, lml, loo from theta
+  void prepare(Output &out, const Eigen::VectorXd &ys, const Eigen::VectorXd *known) const;  // chol, alpha, lml, loo
+  // Output c's known variances on the standardised scale, or null when none were given.
+  const Eigen::VectorXd *known_noise(std::size_t c) const;
+  void set_known_noise(const Eigen::MatrixXd &noise_var);  // after y_scale_ is set
 
   GpConfig config_;
   Standardiser x_scale_, y_scale_;
-  Eigen::MatrixXd x_train_, y_train_;  // raw
-  Eigen::MatrixXd xs_;                 // standardised inputs
+  Eigen::MatrixXd x_train_, y_train_;   // raw
+  Eigen::MatrixXd noise_var_;           // raw, rows x outputs; empty when none was given
+  std::vector<Eigen::VectorXd> known_;  // per output: noise_var_ standardised
+  Eigen::MatrixXd xs_;                  // standardised inputs
   std::vector<Output> outputs_;
 };
 

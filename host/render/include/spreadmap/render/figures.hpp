@@ -107,6 +107,7 @@ struct Optimum {
   bool found = false;
   double u = 0, omega = 0;  // [m/s], [rad/s]
   double vs = 0, rq = 0;    // [m^2/s], [m]
+  int verified = -1;        // -1: proposed only; 1: simulated inside its interval; 0: outside (verify stage)
 };
 
 // Fields over the (u, omega) grid, f[iw * u.size() + iu], SI units (V_s m^2/s, R_q m).
@@ -118,6 +119,7 @@ struct MapInput {
   std::vector<double> vs_std, rq_std;
   std::vector<double> rq_levels, vs_levels, std_levels;  // SI
   std::vector<MapPoint> frontier;                        // efficient operating line
+  std::vector<MapPoint> cases;                           // the simulated settings the model was trained on
   Optimum optimum;
   double rq_target = 0;  // [m], shown in the optimum label when > 0
 };

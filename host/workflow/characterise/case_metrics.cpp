@@ -1,0 +1,131 @@
+#include "workflow/characterise/case_metrics.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include "core/files.hpp"
+#include "core/heightmap_vti.hpp"
+#include "core/schema.hpp"
+#include "core/units.hpp"
+#include "workflow/figures/stage_figures.hpp"
+#include "workflow/simulate/case_setup.hpp"
+
+namespace spreadmap {
+namespace {
+
+const std::set<std::string> host_keys = {"use", "region", "render"};
+
+void read_bounds(const YAML::Node &n, const std::string &file, const std::string &key, double &lo, double &hi,
+                 Diagnostics &diag) {
+  if (!n) return;
+  if (!n.IsSequence() || n.size() != 2) {
+    diag.error(Location::of(file, n), key, "must be a pair [low, high] of lengths", "e.g. [14 mm, 24 mm]");
+    return;
+  }
+  try {
+    const double a = parse_in(n[0].as<std::string>(), "m"), b = parse_in(n[1].as<std::string>(), "m");
+    lo = a;
+    hi = b;
+  } catch (const std::exception &e) {
+    diag.error(Location::of(file, n), key, e.what(), "write lengths with units, e.g. [14 mm, 24 mm]");
+  }
+}
+
+nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &settings, const fs::path &dir,
+                        const std::string &id, const std::string &key) {
+  const Scene scene = read_scene_file(dir / "scene.json");
+  const auto particles = read_particle_file(dir / "state.vtp");
+  LayerRequest rq = settings.request;
+  rq.region = settings.region;
+  if (scene.domain.periodic_y) rq.periodic_y = std::make_pair(0.0, scene.domain.width);
+  take_spreader(rq, describe_spreader(scene, registry, dir / "scene.json"));
+  const LayerResult r = characterise_layer(registry, rq, particles);
+  for (const auto &w : r.warnings) spdlog::warn("{}: {}", id, w);
+  if (!r.height.empty()) write_heightmap_vti(dir / "heightmap.vti", r.nx, r.ny, r.x0, r.y0, r.cell, r.height.data());
+  nlohmann::json doc = {{"case", id},
+                        {"key", key},
+                        {"plugin", "metrics/" + rq.plugin},
+                        {"region", {{"x", {rq.region.x0, rq.region.x1}}, {"y", {rq.region.y0, rq.region.y1}}}},
+                        {"metrics", r.metrics},
+                        {"units", r.units},
+                        {"warnings", r.warnings}};
+  write_atomic(dir / "metrics.json", doc.dump(2) + "\n");
+  if (settings.render) {
+    const auto m = r.metrics;
+    auto um = [&](const char *k) {
+      return m.value(k, nlohmann::json()).is_number() ? m[k].get<double>() * 1e6 : std::nan("");
+    };
+    figures::heightmap(r, dir / "heightmap.png",
+                       fmt::format("{}: mean height {:.0f} um, R_q {:.0f} um", id, um("mean_height"), um("rq")));
+  }
+  return doc;
+}
+
+}  // namespace
+
+CharacteriseSettings read_characterise_settings(const Workflow &wf, const YAML::Node &cfg, const Scene *scene,
+                                                PluginRegistry &registry, Diagnostics &diag) {
+  CharacteriseSettings s;
+  const std::string file = wf.file.string();
+  s.request.plugin = cfg["use"] ? cfg["use"].as<std::string>() : "layer";
+  const LoadedPlugin *plugin = nullptr;
+  try {
+    plugin = &registry.get("metrics", s.request.plugin);
+  } catch (const std::exception &e) {
+    diag.error(Location::of(file, cfg["use"] ? cfg["use"] : cfg), "characterise.use", e.what());
+  }
+  if (plugin)
+    s.request.params = validate_params(SchemaView::of(*plugin->descriptor), cfg, file, "characterise", diag, host_keys);
+  if (!scene) return s;
+  try {
+    s.region = default_region(*scene, describe_spreader(*scene, registry, file));
+  } catch (const std::exception &) {
+    return s;  // the scene's own checks report the spreader's error
+  }
+  Region &region = s.region;
+  if (const YAML::Node r = cfg["region"]) {
+    if (!r.IsMap()) {
+      diag.error(Location::of(file, r), "characterise.region", "must be a map",
+                 "write region: {x: [14 mm, 24 mm], y: [0 mm, 2.5 mm]}");
+    } else {
+      for (const auto &kv : r)
+        if (kv.first.as<std::string>() != "x" && kv.first.as<std::string>() != "y")
+          diag.error(Location::of(file, kv.first), "characterise.region." + kv.first.as<std::string>(), "unknown key",
+                     "known: x, y");
+      read_bounds(r["x"], file, "characterise.region.x", region.x0, region.x1, diag);
+      read_bounds(r["y"], file, "characterise.region.y", region.y0, region.y1, diag);
+    }
+  }
+  const double length = scene->domain.length, width = scene->domain.width;
+  if (region.x0 < 0 || region.x1 > length || region.y0 < 0 || region.y1 > width || region.x1 <= region.x0 ||
+      region.y1 <= region.y0)
+    diag.error(Location::of(file, cfg["region"] ? cfg["region"] : cfg), "characterise.region",
+               fmt::format("x {}..{} mm, y {}..{} mm is not inside the domain (0..{} mm by 0..{} mm)", region.x0 * 1e3,
+                           region.x1 * 1e3, region.y0 * 1e3, region.y1 * 1e3, length * 1e3, width * 1e3),
+               "set characterise.region: {x: [A mm, B mm], y: [C mm, D mm]} inside the domain");
+  s.style = figures::read_style(cfg["render"], true, false, file, "characterise.render", diag);
+  s.render = s.style.on;
+  return s;
+}
+
+std::string settings_hash(const CharacteriseSettings &s) {
+  const Region &r = s.region;
+  return stable_hash(s.request.params.dump() + nlohmann::json({r.x0, r.x1, r.y0, r.y1}).dump() + s.request.plugin);
+}
+
+nlohmann::json case_metrics(PluginRegistry &registry, const CharacteriseSettings &settings, const fs::path &dir,
+                            const std::string &id, const std::string &key, bool force, bool &evaluated) {
+  const fs::path out = dir / "metrics.json";
+  nlohmann::json doc;
+  if (!force && fs::exists(out)) {
+    try {
+      doc = nlohmann::json::parse(read_text(out));
+      if (doc.value("key", "") != key) doc = nullptr;
+    } catch (...) {
+      doc = nullptr;
+    }
+  }
+  evaluated = doc.is_null();
+  return evaluated ? evaluate(registry, settings, dir, id, key) : doc;
+}
+
+}  // namespace spreadmap

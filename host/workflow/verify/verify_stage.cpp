@@ -1,0 +1,197 @@
+// verify: simulates the operating points the map proposes (map/optimum.json: the optimum of every
+// rq_max target; targets sharing one point share its runs) with `replicates` new heaps each (default
+// 3), measures them as characterise does and compares them with the trained model's prediction and
+// its interval (verify/verification.hpp). Writes map/verified.json; a point is verified when the
+// simulated mean of V_s and of R_q both fall inside their predicted intervals, the answer when every
+// point is. An optimum on the border of the trained box is flagged: the true optimum may lie outside.
+#include <spdlog/spdlog.h>
+
+#include "analysis/replicates.hpp"
+#include "analysis/table.hpp"
+#include "core/error.hpp"
+#include "core/files.hpp"
+#include "workflow/map/mapping.hpp"
+#include "workflow/scene/scene_section.hpp"
+#include "workflow/simulate/replicates.hpp"
+#include "workflow/stage.hpp"
+#include "workflow/figures/figure_style.hpp"
+#include "workflow/verify/verification.hpp"
+#include "workflow/verify/verified_map.hpp"
+#include "workflow/verify/verify_runs.hpp"
+
+namespace spreadmap {
+namespace {
+
+constexpr std::size_t default_runs = 3;
+
+// Per output, the mean over the design points of the replicate scatter^2 (metrics.csv's <output>_std);
+// 0 where the runs were not replicated.
+std::vector<double> mean_replicate_variance(const fs::path &metrics_csv, const analysis::ModelFile &model) {
+  std::vector<double> out(model.outputs.size(), 0.0);
+  if (!fs::exists(metrics_csv)) return out;
+  const auto table = analysis::Table::read_csv(metrics_csv.string());
+  std::vector<std::string> names;
+  std::vector<std::size_t> rows;
+  for (const auto &o : model.outputs) names.push_back(o.name);
+  for (std::size_t r = 0; r < table.rows(); ++r) rows.push_back(r);
+  const Eigen::MatrixXd var = analysis::replicate_noise_variance(table, names, rows);
+  if (!table.has_column(analysis::replicates_column()) || var.rows() == 0) return out;
+  const auto n = table.numbers(analysis::replicates_column());
+  for (std::size_t o = 0; o < out.size(); ++o) {
+    double sum = 0;
+    for (std::size_t r = 0; r < rows.size(); ++r) sum += var(Eigen::Index(r), Eigen::Index(o)) * n[r];  // std^2
+    out[o] = sum / double(rows.size());
+  }
+  return out;
+}
+
+class VerifyStage : public Stage {
+ public:
+  void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
+                Diagnostics &diag) override {
+    const std::string file = wf.file.string();
+    for (const auto &kv : entry.config)
+      if (kv.first.as<std::string>() != "replicates" && kv.first.as<std::string>() != "render")
+        diag.error(Location::of(file, kv.first), "verify." + kv.first.as<std::string>(), "unknown key",
+                   "known: replicates, render");
+    style_ = figures::read_style(entry.config["render"], true, false, file, "verify.render", diag);
+    runs_ = read_replicates(entry.config["replicates"], file, "verify.replicates", default_runs, diag);
+    const StageEntry *map = nullptr, *characterise = nullptr;
+    for (const auto &s : wf.stages) {
+      if (&s == &entry) break;
+      if (s.kind == "map") map = &s;
+    }
+    for (const auto &s : wf.stages)
+      if (s.kind == "characterise") characterise = &s;
+    if (!map)
+      diag.error(entry.where, "verify",
+                 "needs a map stage before it: it verifies the optimum the map proposes (map/optimum.json)",
+                 "add `- map: {model: gp, rq_max: [110 um]}` before `- verify`");
+    else if (!map->config["rq_max"])
+      diag.error(map->where, "map.rq_max", "the verify stage needs an optimum, and a map without rq_max proposes none",
+                 "give the map stage a target roughness, e.g. rq_max: [110 um]");
+    if (!scene) return;
+    Diagnostics theirs;  // the characterise stage reports its own problems
+    settings_ = read_characterise_settings(wf, characterise ? characterise->config : YAML::Node(YAML::NodeType::Map),
+                                           scene, registry, theirs);
+    settings_.render = false;  // the verify runs' figures are not drawn
+  }
+
+  void run(StageContext &ctx) override {
+    figures::use_style(style_);
+    const fs::path optimum_json = ctx.run.map_dir() / "optimum.json";
+    if (!fs::exists(optimum_json))
+      throw InputError("error: verify: " + optimum_json.string() + " does not exist; run the map stage first");
+    const auto optimum = nlohmann::json::parse(read_text(optimum_json));
+    const std::string plugin = optimum.value("model", "");
+    const std::string name = plugin.substr(plugin.find('/') + 1);
+    const auto model = analysis::load_model_json((ctx.run.train_dir(name) / "model.json").string());
+    const auto vs = output_index(model, "vs"), rq = output_index(model, "rq");
+    if (!vs || !rq) throw InputError("error: verify: the model " + plugin + " has no outputs named vs and rq");
+
+    std::vector<VerifyPoint> points;
+    std::vector<Eigen::VectorXd> xs;
+    std::vector<std::vector<double>> targets;
+    for (const auto &o : optimum.value("optima", nlohmann::json::array())) {
+      if (!o.value("found", false)) {
+        spdlog::warn("verify: no optimum for R_q <= {} to verify", display(o.value("rq_max", 0.0), "m"));
+        continue;
+      }
+      Eigen::VectorXd x(Eigen::Index(model.inputs.size()));
+      for (std::size_t i = 0; i < model.inputs.size(); ++i) x(Eigen::Index(i)) = o["inputs"][model.inputs[i].name];
+      std::size_t p = 0;
+      while (p < xs.size() && xs[p] != x) ++p;
+      if (p == xs.size()) {
+        xs.push_back(x), targets.emplace_back();
+        points.push_back({"v" + std::to_string(p), point_scene(ctx, model, x), o["inputs"]});
+      }
+      targets[p].push_back(o["rq_max"].get<double>());
+    }
+    if (points.empty())
+      throw RunFailure(
+          "error: verify: " + optimum_json.string() +
+          " proposes no operating point (no grid point meets any rq_max); raise rq_max or widen the design");
+
+    const auto simulated = run_and_measure(ctx, points, runs_, settings_);
+    const auto known_var = mean_replicate_variance(ctx.run.metrics_csv(), model);
+    nlohmann::json out_points = nlohmann::json::array();
+    bool all = true;
+    for (std::size_t p = 0; p < points.size(); ++p) {
+      const auto predicted = predict_for_runs(ctx.registry, model, xs[p], runs_, known_var);
+      nlohmann::json checks = nlohmann::json::object();
+      bool verified = true;
+      std::vector<bool> met;  // per target: the simulated mean R_q at most rq_max
+      for (const auto o : {*vs, *rq}) {
+        const std::string metric = model.outputs[o].name;
+        std::vector<double> values;
+        for (const auto &m : simulated[p]) {
+          const auto &v = m["metrics"].value(metric, nlohmann::json());
+          if (!v.is_number())
+            throw RunFailure("error: verify: " + m.value("case", "") + " has no value of " + metric +
+                             " (empty sampling region?); see its metrics.json");
+          values.push_back(v.get<double>());
+        }
+        const MetricCheck c = check_metric(metric, model.outputs[o].unit, predicted[o], values);
+        verified = verified && c.inside;
+        checks[metric] = c.to_json();
+        if (o == *rq)
+          for (double t : targets[p]) met.push_back(c.mean <= t);
+        spdlog::info("verify: {} {}: predicted {} +- {} (2 std), simulated {} over {} runs: {}", points[p].id, metric,
+                     display(c.predicted.mean, c.unit), display(2 * c.predicted.std, c.unit), display(c.mean, c.unit),
+                     values.size(), c.inside ? "inside" : "OUTSIDE the interval");
+      }
+      const nlohmann::json edges = edges_of(model, xs[p]);
+      if (!edges.empty()) spdlog::warn("verify: {} ({}) is {}", points[p].id, describe(model, xs[p]), edge_note());
+      std::vector<std::string> cases;
+      for (std::size_t r = 0; r < runs_; ++r) cases.push_back("verify/" + replicate_id(points[p].id, r));
+      nlohmann::json point = {{"id", points[p].id},         {"rq_max", targets[p]}, {"rq_max_met", met},
+                              {"inputs", points[p].inputs}, {"metrics", checks},    {"verified", verified},
+                              {"at_edge", !edges.empty()},  {"edges", edges},       {"cases", cases}};
+      if (!edges.empty()) point["edge_note"] = edge_note();
+      out_points.push_back(point);
+      all = all && verified;
+      spdlog::info("verify: {} ({}): {}", points[p].id, describe(model, xs[p]),
+                   verified ? "verified: the simulation falls inside the predicted interval"
+                            : "NOT verified: the simulation falls outside the predicted interval");
+    }
+    write_atomic(
+        ctx.run.map_dir() / "verified.json",
+        nlohmann::json({{"model", plugin}, {"replicates", runs_}, {"points", out_points}, {"verified", all}}).dump(2) +
+            "\n");
+    // the figure shows the first target's optimum: point v0 when that one was found
+    const auto &optima = optimum.value("optima", nlohmann::json::array());
+    if (style_.on && !optima.empty() && optima[0].value("found", false))
+      redraw_verified_map(ctx, model, optimum, out_points[0]["verified"].get<bool>() ? 1 : 0);
+  }
+
+ private:
+  // The workflow's scene at x: each model input is a scene key (U, omega, ...), set as a design does.
+  static Scene point_scene(StageContext &ctx, const analysis::ModelFile &model, const Eigen::VectorXd &x) {
+    Scene scene = ctx.scene;
+    for (std::size_t i = 0; i < model.inputs.size(); ++i) {
+      SceneKey key;
+      std::string why;
+      if (!find_scene_key(ctx.scene, ctx.registry, model.inputs[i].name, key, why))
+        throw InputError("error: verify: the model's input " + model.inputs[i].name +
+                         " is not a key of the scene, so its optimum cannot be simulated: " + why);
+      apply_scene_value(scene, key, x(Eigen::Index(i)));
+    }
+    return scene;
+  }
+  static std::string describe(const analysis::ModelFile &model, const Eigen::VectorXd &x) {
+    std::string s;
+    for (std::size_t i = 0; i < model.inputs.size(); ++i)
+      s += (i ? ", " : "") + model.inputs[i].name + " = " + display(x(Eigen::Index(i)), model.inputs[i].unit);
+    return s;
+  }
+
+  std::size_t runs_ = default_runs;
+  CharacteriseSettings settings_;
+  figures::Style style_;
+};
+
+}  // namespace
+
+std::unique_ptr<Stage> make_verify_stage() { return std::make_unique<VerifyStage>(); }
+
+}  // namespace spreadmap
