@@ -69,7 +69,7 @@ constexpr sm_param_v1 wall_params[] = {
     sm::table("velocity", "translation velocity [m/s] (default 0)"),
     sm::number("start", "s", 0, 1e6, 0,
                "the translation (a spreader: its travel) starts at this time (at rest before)"),
-    sm::table("spreader", "spreader: the plugin (use: NAME) and its parameters, e.g. {use: roller, diameter: 10 mm}"),
+    sm::table("spreader", "spreader: the plugin (use: NAME) and its parameters as `spreadmap plugins NAME` lists them"),
 };
 
 constexpr sm_param_v1 run_params[] = {
@@ -274,13 +274,13 @@ void read_particles(const Reader &r, const YAML::Node &node, const fs::path &dir
                  "add density: 2500 kg/m^3 (for example) to the particles section");
 }
 
-// A spreader wall's plugin and its parameters (`spreader: {use: roller, ...}`), checked by the plugin's
+// A spreader wall's plugin and its parameters (`spreader: {use: NAME, ...}`), checked by the plugin's
 // schema and its own cross-checks.
 void read_spreader(const Reader &r, const YAML::Node &wall, const std::string &path, PluginRegistry &registry,
                    SpreaderWall &out) {
   const std::string at = path + ".spreader";
   const YAML::Node node = wall["spreader"];
-  const char *fix = "write spreader: {use: roller, diameter: 10 mm, ...}; spreadmap plugins --kind spreader lists them";
+  const char *fix = "write spreader: {use: NAME, ...}; spreadmap plugins --kind spreader lists the spreaders";
   if (!node || !node.IsMap()) {
     r.diag.error(r.at(node ? node : wall), at,
                  node ? "expected a mapping naming the plugin: {use: NAME, ...}" : "required value missing", fix);

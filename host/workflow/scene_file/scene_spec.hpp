@@ -18,7 +18,7 @@ using Vec = std::array<double, 3>;
 
 enum class WallKind { plane, box, cylinder, spreader };
 
-// A spreader plugin as a wall (`type: spreader`): a roller, a blade ... moving as it describes itself.
+// A spreader plugin as a wall (`type: spreader`), moving as it describes itself through the plugin ABI.
 struct SpreaderWall {
   std::string use;                                   // the spreader plugin
   nlohmann::json params = nlohmann::json::object();  // its parameters (validated, SI)
