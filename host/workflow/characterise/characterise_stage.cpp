@@ -1,6 +1,8 @@
 // characterise: the layer metrics of every finished case (metrics.json and heightmap.vti in the
 // case folder), gathered in metrics.csv with one row per case and the unit of every column in
-// metrics.units.json. A case whose state and settings did not change is not evaluated again.
+// metrics.units.json. A multi-layer case (scene.layers) has one row per layer, evaluated in its
+// layer_K folder, and metrics.csv then a `layer` column after `case`. A case whose state and settings did not change is
+// not evaluated again.
 #include <spdlog/spdlog.h>
 
 #include "analysis/table.hpp"
@@ -9,7 +11,9 @@
 #include "core/heightmap_vti.hpp"
 #include "core/schema.hpp"
 #include "core/units.hpp"
+#include "workflow/simulate/case_runner.hpp"
 #include "workflow/simulate/case_setup.hpp"
+#include "workflow/simulate/layer_feed.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/figures/stage_figures.hpp"
 #include "workflow/characterise/layer_eval.hpp"
@@ -89,23 +93,28 @@ class CharacteriseStage : public Stage {
         ++missing;
         continue;
       }
-      const fs::path out = dir / "metrics.json";
-      const std::string key = stable_hash(settings + c.value("hash", ""));
-      nlohmann::json doc;
-      if (!ctx.options.force && fs::exists(out)) {
-        try {
-          doc = nlohmann::json::parse(read_text(out));
-          if (doc.value("key", "") != key) doc = nullptr;
-        } catch (...) {
-          doc = nullptr;
+      // one row per layer of a multi-layer case (layer 0: a single pass, as its own folder holds it)
+      const int layers = static_cast<int>(read_scene_file(dir / "scene.json").layers.count);
+      for (int layer = layers > 1 ? 1 : 0; layer <= (layers > 1 ? layers : 0); ++layer) {
+        const fs::path out = (layer ? dir / layer_folder(layer) : dir) / "metrics.json";
+        const std::string key =
+            stable_hash(settings + c.value("hash", "") + (layer ? "/layer " + std::to_string(layer) : ""));
+        nlohmann::json doc;
+        if (!ctx.options.force && fs::exists(out)) {
+          try {
+            doc = nlohmann::json::parse(read_text(out));
+            if (doc.value("key", "") != key) doc = nullptr;
+          } catch (...) {
+            doc = nullptr;
+          }
         }
+        if (doc.is_null()) {
+          doc = evaluate(ctx, dir, id, key, layer);
+          ++evaluated;
+        }
+        doc["inputs"] = c["inputs"];
+        results.push_back(doc);
       }
-      if (doc.is_null()) {
-        doc = evaluate(ctx, dir, id, key);
-        ++evaluated;
-      }
-      doc["inputs"] = c["inputs"];
-      results.push_back(doc);
     }
     if (missing)
       spdlog::warn("characterise: {} of {} cases have no finished state; run the simulate stage to complete them",
@@ -143,14 +152,26 @@ class CharacteriseStage : public Stage {
     }
   }
 
-  nlohmann::json evaluate(StageContext &ctx, const fs::path &dir, const std::string &id, const std::string &key) {
-    const Scene scene = read_scene_file(dir / "scene.json");
+  // Layer k of a multi-layer case is read from its folder. Its metrics are of the whole bed after k
+  // passes, heights from the plate (z = 0), the gap the raised one (gap + drop): packing and solid
+  // thickness stay consistent. layer_height = mean height - the platform's drop: the powder's mean
+  // top above the lowered platform's nominal place, as the spreader sees it (layer 1: mean height).
+  // Layer 0 is a single pass.
+  nlohmann::json evaluate(StageContext &ctx, const fs::path &case_dir, const std::string &id, const std::string &key,
+                          int layer) {
+    const Scene scene = read_scene_file(case_dir / "scene.json");
+    const fs::path dir = layer ? case_dir / layer_folder(layer) : case_dir;
     const auto particles = read_particle_file(dir / "state.vtp");
     LayerRequest rq = request_;
     rq.region = region_;
     if (scene.domain.periodic_y) rq.periodic_y = std::make_pair(0.0, scene.domain.width);
-    take_spreader(rq, describe_spreader(scene, ctx.registry, dir / "scene.json"));
-    const LayerResult r = characterise_layer(ctx.registry, rq, particles);
+    const Scene spread_by = layer ? layer_scene(scene, layer) : scene;  // its gap raised by the drop
+    take_spreader(rq, describe_spreader(spread_by, ctx.registry, case_dir / "scene.json"));
+    LayerResult r = characterise_layer(ctx.registry, rq, particles);
+    if (layer && r.metrics.value("mean_height", nlohmann::json()).is_number()) {
+      r.metrics["layer_height"] = r.metrics["mean_height"].get<double>() - platform_drop(scene, layer);
+      r.units["layer_height"] = "m";
+    }
     for (const auto &w : r.warnings) spdlog::warn("{}: {}", id, w);
     if (!r.height.empty()) write_heightmap_vti(dir / "heightmap.vti", r.nx, r.ny, r.x0, r.y0, r.cell, r.height.data());
     nlohmann::json doc = {{"case", id},
@@ -160,6 +181,7 @@ class CharacteriseStage : public Stage {
                           {"metrics", r.metrics},
                           {"units", r.units},
                           {"warnings", r.warnings}};
+    if (layer) doc["layer"] = layer;
     write_atomic(dir / "metrics.json", doc.dump(2) + "\n");
     if (render_) {
       const auto m = r.metrics;
@@ -167,7 +189,8 @@ class CharacteriseStage : public Stage {
         return m.value(k, nlohmann::json()).is_number() ? m[k].get<double>() * 1e6 : std::nan("");
       };
       figures::heightmap(r, dir / "heightmap.png",
-                         fmt::format("{}: mean height {:.0f} um, R_q {:.0f} um", id, um("mean_height"), um("rq")));
+                         fmt::format("{}{}: mean height {:.0f} um, R_q {:.0f} um", id,
+                                     layer ? " layer " + std::to_string(layer) : "", um("mean_height"), um("rq")));
     }
     return doc;
   }
@@ -176,6 +199,8 @@ class CharacteriseStage : public Stage {
                    const std::vector<nlohmann::json> &results) {
     std::vector<std::string> metrics = standard_metric_order();
     std::vector<std::string> cols = {"case"};
+    const bool layered = std::any_of(results.begin(), results.end(), [](const auto &r) { return r.contains("layer"); });
+    if (layered) cols.push_back("layer");  // multi-layer cases only: single-pass tables stay as they were
     cols.insert(cols.end(), inputs.begin(), inputs.end());
     // only the metrics some case has, standard ones first, then any extra a plugin reports
     std::vector<std::string> present;
@@ -191,10 +216,12 @@ class CharacteriseStage : public Stage {
     cols.insert(cols.end(), present.begin(), present.end());
     analysis::Table table(cols, "metrics.csv");
     nlohmann::json units = {{"case", ""}};
+    if (layered) units["layer"] = "";
     for (const auto &v : manifest["design"].value("variables", nlohmann::json::array()))
       units[v["name"].get<std::string>()] = v["unit"];
     for (const auto &r : results) {
       std::vector<std::string> row = {r["case"]};
+      if (layered) row.push_back(std::to_string(r.value("layer", 1)));
       for (const auto &in : inputs) row.push_back(analysis::Table::format(r["inputs"].value(in, std::nan(""))));
       for (const auto &m : present) {
         const auto &v = r["metrics"].value(m, nlohmann::json());
