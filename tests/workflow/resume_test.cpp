@@ -2,11 +2,13 @@
 // must stop cleanly (exit 130, a message saying how to resume, no half-written file anywhere); the
 // same command then runs only the unfinished cases — the finished ones keep their files untouched
 // (same inode and modification time: write_atomic would have replaced the inode) and their manifest
-// timings — and a third run recomputes nothing at all.
+// timings — and a third run recomputes nothing at all. A multi-layer case (Layers.*) resumes at the
+// layer it was on.
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <csignal>
 #include <fstream>
@@ -243,5 +245,117 @@ TEST(Rerun, OnlyWhatChangedOrWasDamagedIsRecomputedAndForceRecomputesAll) {
   EXPECT_TRUE(contains(all.err, "2 cases, 2 to run, 0 finished already")) << all.err;
   EXPECT_NE(identify(c0 / "state.vtp").inode, before0.inode);
   EXPECT_NE(identify(c1 / "state.vtp").inode, before1.inode);
+  fs::remove_all(dir);
+}
+
+namespace {
+
+const fs::path two_layers = fs::path(SPREADMAP_SOURCE_DIR) / "tests/workflow/data/multilayer/two_layers.yaml";
+
+std::vector<std::vector<std::string>> csv_rows(const fs::path &file) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(file);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream s(line);
+    for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+std::size_t column(const std::vector<std::string> &header, const std::string &name) {
+  return std::size_t(std::find(header.begin(), header.end(), name) - header.begin());
+}
+
+// Spheres in a state.vtp, as its header says.
+std::size_t spheres_in(const fs::path &vtp) {
+  const std::string text = slurp(vtp), tag = "NumberOfPoints=\"";
+  const auto at = text.find(tag);
+  return at == std::string::npos ? 0 : std::stoul(text.substr(at + tag.size()));
+}
+
+}  // namespace
+
+// Two layers of a tiny scene: the second heap is spread onto the first layer's bed. The bed holds
+// more powder in the sampling region after the second pass, every sphere is accounted for (two heaps
+// fed, less those the engine removed), metrics.csv has a row per layer, and layer 1 is exactly the
+// single-pass case of the same scene.
+TEST(Layers, TheSecondLayerAddsPowderAndEverySphereIsCounted) {
+  const fs::path dir = fs::temp_directory_path() / ("spreadmap_layers_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const t::Outcome r = t::run({{"run", two_layers.string(), "--out", (dir / "two").string()}, {}, {}, {}});
+  ASSERT_EQ(r.exit_code, 0) << r.describe();
+  const fs::path c = dir / "two" / "cases" / "c000";
+
+  const auto rows = csv_rows(dir / "two" / "metrics.csv");
+  ASSERT_EQ(rows.size(), 3u);
+  ASSERT_GE(rows[0].size(), 2u);
+  EXPECT_EQ(rows[0][1], "layer");
+  const std::size_t in_region = column(rows[0], "particles_in_region"), top = column(rows[0], "layer_height");
+  ASSERT_LT(in_region, rows[0].size());
+  ASSERT_LT(top, rows[0].size());
+  EXPECT_EQ(rows[1][1], "1");
+  EXPECT_EQ(rows[2][1], "2");
+  EXPECT_GT(std::stod(rows[2][in_region]), std::stod(rows[1][in_region])) << "the second layer added no powder";
+
+  const auto cj = nlohmann::json::parse(slurp(c / "case.json"));
+  ASSERT_EQ(cj.at("layers").size(), 2u);
+  std::size_t fed = 0, removed = 0;
+  for (const auto &l : cj["layers"]) {
+    fed += l.at("particles_fed").get<std::size_t>();
+    removed += l.at("removed").get<std::size_t>() + l.at("removed_settling").get<std::size_t>();
+  }
+  const std::size_t heap = cj["layers"][0]["particles_fed"].get<std::size_t>();
+  EXPECT_EQ(heap, 300u);
+  EXPECT_GT(cj["layers"][1]["particles_fed"].get<std::size_t>(), heap / 2);  // less those kept clear of the roller
+  EXPECT_LE(cj["layers"][1]["particles_fed"].get<std::size_t>(), heap);
+  EXPECT_EQ(spheres_in(c / "layer_1" / "state.vtp") + cj["layers"][1]["particles_fed"].get<std::size_t>() -
+                cj["layers"][1]["removed"].get<std::size_t>() - cj["layers"][1]["removed_settling"].get<std::size_t>(),
+            spheres_in(c / "layer_2" / "state.vtp"));
+  EXPECT_EQ(spheres_in(c / "state.vtp"), fed - removed);
+  EXPECT_EQ(cj.at("particles_end").get<std::size_t>(), fed - removed);
+  EXPECT_EQ(slurp(c / "state.vtp"), slurp(c / "layer_2" / "state.vtp"));
+  EXPECT_DOUBLE_EQ(cj["layers"][1]["platform_drop"].get<double>(), 0.3e-3);
+  EXPECT_DOUBLE_EQ(cj["layers"][1]["spreader"]["gap"].get<double>(), 0.5e-3 + 0.3e-3);
+
+  // the same scene in one layer: its state is layer 1's, and its metrics.csv has no layer column
+  std::string one = slurp(two_layers);
+  one.erase(one.find("  layers:"), one.find('\n', one.find("  layers:")) - one.find("  layers:") + 1);
+  std::ofstream(dir / "one.yaml") << one;
+  const t::Outcome single = t::run({{"run", (dir / "one.yaml").string(), "--out", (dir / "one").string()}, {}, {}, {}});
+  ASSERT_EQ(single.exit_code, 0) << single.describe();
+  EXPECT_EQ(slurp(dir / "one" / "cases" / "c000" / "state.vtp"), slurp(c / "layer_1" / "state.vtp"));
+  const auto single_rows = csv_rows(dir / "one" / "metrics.csv");
+  ASSERT_EQ(single_rows.size(), 2u);
+  EXPECT_EQ(column(single_rows[0], "layer"), single_rows[0].size());
+  EXPECT_EQ(column(single_rows[0], "layer_height"), single_rows[0].size());
+  fs::remove_all(dir);
+}
+
+// A run stopped after its first layer (the second layer's files gone, as when a run is killed
+// during it) resumes at layer 2: layer 1's files are neither rewritten nor recomputed, and the
+// result is the uninterrupted run's, bit for bit.
+TEST(Layers, AStoppedRunResumesAtItsLayerAndNeverRecomputesAFinishedOne) {
+  const fs::path dir = fs::temp_directory_path() / ("spreadmap_layers_resume_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const t::Command command{{"run", two_layers.string(), "--out", dir.string()}, {}, {}, {}};
+  ASSERT_EQ(t::run(command).exit_code, 0);
+  const fs::path c = dir / "cases" / "c000";
+  const std::string whole = slurp(c / "state.vtp"), second = slurp(c / "layer_2" / "state.vtp");
+  const FileId layer1 = identify(c / "layer_1" / "state.vtp"), record1 = identify(c / "layer_1" / "layer.json");
+  fs::remove_all(c / "layer_2");
+  for (const char *f : {"case.json", "state.vtp", "metrics.json"}) fs::remove(c / f);
+
+  const t::Outcome resumed = t::run(command);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.describe();
+  EXPECT_TRUE(contains(resumed.err, "1 cases, 1 to run, 0 finished already")) << resumed.err;
+  EXPECT_TRUE(contains(resumed.err, "c000 layer 1: finished before")) << resumed.err;
+  EXPECT_TRUE(contains(resumed.err, "c000 layer 2: heap fed onto the bed settled")) << resumed.err;
+  EXPECT_EQ(identify(c / "layer_1" / "state.vtp"), layer1) << "layer 1 was rewritten";
+  EXPECT_EQ(identify(c / "layer_1" / "layer.json"), record1) << "layer 1 was rewritten";
+  EXPECT_EQ(slurp(c / "layer_2" / "state.vtp"), second);
+  EXPECT_EQ(slurp(c / "state.vtp"), whole);
+  EXPECT_EQ(temporaries(dir), std::vector<std::string>{});
   fs::remove_all(dir);
 }

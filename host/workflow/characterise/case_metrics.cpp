@@ -8,6 +8,8 @@
 #include "core/units.hpp"
 #include "workflow/figures/stage_figures.hpp"
 #include "workflow/simulate/case_setup.hpp"
+#include "workflow/simulate/case_runner.hpp"
+#include "workflow/simulate/layer_feed.hpp"
 
 namespace spreadmap {
 namespace {
@@ -30,15 +32,26 @@ void read_bounds(const YAML::Node &n, const std::string &file, const std::string
   }
 }
 
-nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &settings, const fs::path &dir,
-                        const std::string &id, const std::string &key) {
-  const Scene scene = read_scene_file(dir / "scene.json");
+// Layer k (1..count) of a multi-layer case is read from its layer_K folder: the whole bed after k
+// passes, heights from the plate (z = 0), the gap the raised one (gap + drop), so packing and solid
+// thickness stay consistent. layer_height = mean height - the platform's drop: the powder's mean top
+// above the lowered platform's nominal place, as the spreader sees it (layer 1: mean height).
+// Layer 0 is a single pass, read from the case folder itself.
+nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &settings, const fs::path &case_dir,
+                        const std::string &id, const std::string &key, int layer) {
+  const Scene scene = read_scene_file(case_dir / "scene.json");
+  const fs::path dir = layer ? case_dir / layer_folder(layer) : case_dir;
   const auto particles = read_particle_file(dir / "state.vtp");
   LayerRequest rq = settings.request;
   rq.region = settings.region;
   if (scene.domain.periodic_y) rq.periodic_y = std::make_pair(0.0, scene.domain.width);
-  take_spreader(rq, describe_spreader(scene, registry, dir / "scene.json"));
-  const LayerResult r = characterise_layer(registry, rq, particles);
+  const Scene spread_by = layer ? layer_scene(scene, layer) : scene;  // its gap raised by the drop
+  take_spreader(rq, describe_spreader(spread_by, registry, case_dir / "scene.json"));
+  LayerResult r = characterise_layer(registry, rq, particles);
+  if (layer && r.metrics.value("mean_height", nlohmann::json()).is_number()) {
+    r.metrics["layer_height"] = r.metrics["mean_height"].get<double>() - platform_drop(scene, layer);
+    r.units["layer_height"] = "m";
+  }
   for (const auto &w : r.warnings) spdlog::warn("{}: {}", id, w);
   if (!r.height.empty()) write_heightmap_vti(dir / "heightmap.vti", r.nx, r.ny, r.x0, r.y0, r.cell, r.height.data());
   nlohmann::json doc = {{"case", id},
@@ -48,6 +61,7 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
                         {"metrics", r.metrics},
                         {"units", r.units},
                         {"warnings", r.warnings}};
+  if (layer) doc["layer"] = layer;
   write_atomic(dir / "metrics.json", doc.dump(2) + "\n");
   if (settings.render) {
     const auto m = r.metrics;
@@ -55,7 +69,8 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
       return m.value(k, nlohmann::json()).is_number() ? m[k].get<double>() * 1e6 : std::nan("");
     };
     figures::heightmap(r, dir / "heightmap.png",
-                       fmt::format("{}: mean height {:.0f} um, R_q {:.0f} um", id, um("mean_height"), um("rq")));
+                       fmt::format("{}{}: mean height {:.0f} um, R_q {:.0f} um", id,
+                                   layer ? " layer " + std::to_string(layer) : "", um("mean_height"), um("rq")));
   }
   return doc;
 }
@@ -113,8 +128,8 @@ std::string settings_hash(const CharacteriseSettings &s) {
 }
 
 nlohmann::json case_metrics(PluginRegistry &registry, const CharacteriseSettings &settings, const fs::path &dir,
-                            const std::string &id, const std::string &key, bool force, bool &evaluated) {
-  const fs::path out = dir / "metrics.json";
+                            const std::string &id, const std::string &key, bool force, bool &evaluated, int layer) {
+  const fs::path out = (layer ? dir / layer_folder(layer) : dir) / "metrics.json";
   nlohmann::json doc;
   if (!force && fs::exists(out)) {
     try {
@@ -125,7 +140,7 @@ nlohmann::json case_metrics(PluginRegistry &registry, const CharacteriseSettings
     }
   }
   evaluated = doc.is_null();
-  return evaluated ? evaluate(registry, settings, dir, id, key) : doc;
+  return evaluated ? evaluate(registry, settings, dir, id, key, layer) : doc;
 }
 
 }  // namespace spreadmap

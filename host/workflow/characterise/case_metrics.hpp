@@ -32,9 +32,10 @@ std::string settings_hash(const CharacteriseSettings &settings);
 
 // The metrics document of the finished case in `dir` (id `id`) under `key` (settings_hash + the
 // case's hash): its metrics.json when that holds the same key and !force, else measured now and
-// written. `evaluated` tells which.
+// written. `evaluated` tells which. `layer` k >= 1: layer k of a multi-layer case, in its layer_K
+// folder (the key then names the layer too); 0: a single pass.
 nlohmann::json case_metrics(PluginRegistry &registry, const CharacteriseSettings &settings,
                             const std::filesystem::path &dir, const std::string &id, const std::string &key, bool force,
-                            bool &evaluated);
+                            bool &evaluated, int layer = 0);
 
 }  // namespace spreadmap

@@ -1,6 +1,8 @@
 // characterise: the layer metrics of every finished case (metrics.json and heightmap.vti in the
 // case folder), gathered in metrics.csv with one row per case and the unit of every column in
-// metrics.units.json. A case whose state and settings did not change is not evaluated again.
+// metrics.units.json. A multi-layer case (scene.layers) has one row per layer, evaluated in its
+// layer_K folder, and metrics.csv then a `layer` column after `case`. A case whose state and
+// settings did not change is not evaluated again.
 // Replicated points (simulate: replicates) get one row per point in metrics.csv (each metric's
 // mean, its _std over the replicates, and `replicates`); every run's own row is kept in
 // metrics_replicates.csv.
@@ -45,13 +47,18 @@ class CharacteriseStage : public Stage {
         ++missing;
         continue;
       }
-      const std::string key = stable_hash(settings + c.value("hash", ""));
-      bool now = false;
-      nlohmann::json doc = case_metrics(ctx.registry, settings_, dir, id, key, ctx.options.force, now);
-      evaluated += now;
-      doc["inputs"] = c["inputs"];
-      if (c.contains("point")) doc["point"] = c["point"], doc["replicate"] = c["replicate"];
-      results.push_back(doc);
+      // one row per layer of a multi-layer case (layer 0: a single pass, as its own folder holds it)
+      const int layers = static_cast<int>(read_scene_file(dir / "scene.json").layers.count);
+      for (int layer = layers > 1 ? 1 : 0; layer <= (layers > 1 ? layers : 0); ++layer) {
+        const std::string key =
+            stable_hash(settings + c.value("hash", "") + (layer ? "/layer " + std::to_string(layer) : ""));
+        bool now = false;
+        nlohmann::json doc = case_metrics(ctx.registry, settings_, dir, id, key, ctx.options.force, now, layer);
+        evaluated += now;
+        doc["inputs"] = c["inputs"];
+        if (c.contains("point")) doc["point"] = c["point"], doc["replicate"] = c["replicate"];
+        results.push_back(doc);
+      }
     }
     if (missing)
       spdlog::warn("characterise: {} of {} cases have no finished state; run the simulate stage to complete them",
@@ -77,6 +84,8 @@ class CharacteriseStage : public Stage {
                    const std::vector<nlohmann::json> &results) {
     std::vector<std::string> metrics = standard_metric_order();
     std::vector<std::string> cols = {"case"};
+    const bool layered = std::any_of(results.begin(), results.end(), [](const auto &r) { return r.contains("layer"); });
+    if (layered) cols.push_back("layer");  // multi-layer cases only: single-pass tables stay as they were
     cols.insert(cols.end(), inputs.begin(), inputs.end());
     // only the metrics some case has, standard ones first, then any extra a plugin reports
     std::vector<std::string> present;
@@ -92,10 +101,12 @@ class CharacteriseStage : public Stage {
     cols.insert(cols.end(), present.begin(), present.end());
     analysis::Table table(cols, "metrics.csv");
     nlohmann::json units = {{"case", ""}};
+    if (layered) units["layer"] = "";
     for (const auto &v : manifest["design"].value("variables", nlohmann::json::array()))
       units[v["name"].get<std::string>()] = v["unit"];
     for (const auto &r : results) {
       std::vector<std::string> row = {r["case"]};
+      if (layered) row.push_back(std::to_string(r.value("layer", 1)));
       for (const auto &in : inputs) row.push_back(analysis::Table::format(r["inputs"].value(in, std::nan(""))));
       for (const auto &m : present) {
         const auto &v = r["metrics"].value(m, nlohmann::json());

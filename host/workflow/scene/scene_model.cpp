@@ -74,6 +74,13 @@ void fields(T &t, F &&f) {
   f("sleep_behind", t.sleep_behind);
 }
 
+template <class L, class F>
+requires std::same_as<std::remove_const_t<L>, Layers>
+void fields(L &l, F &&f) {
+  f("count", l.count);
+  f("thickness", l.thickness);
+}
+
 struct Writer {
   json &out;
   template <class T> void operator()(const char *key, const T &value) { out[key] = value; }
@@ -116,6 +123,7 @@ class Reader {
   json object(const char *key) {
     return need(key, in_.contains(key) && at(key).is_object(), "an object of parameters");
   }
+  bool has(const char *key) const { return in_.contains(key); }
   Reader section(const char *key) {
     need(key, in_.contains(key), "an object");
     return Reader(at(key), source_, path_ + "." + key);
@@ -165,6 +173,7 @@ json to_json(const Scene &s) {
   out["contact"] = {{"use", s.contact.use}, {"params", s.contact.params}};
   out["substrate"] = {{"law", s.substrate.law}};
   out["spreader"] = {{"use", s.spreader.use}, {"params", s.spreader.params}, {"law", s.spreader.law}};
+  if (s.layers.count > 1) out["layers"] = written(s.layers);  // absent for one layer: hashes unchanged
   return out;
 }
 
@@ -187,6 +196,7 @@ Scene scene_from_json(const json &in, const std::string &source) {
   s.spreader.params = spreader.object("params");
   s.spreader.law = spreader.object("law");
   spreader.no_other_keys();
+  if (top.has("layers")) s.layers = read_section<Layers>(top, "layers");
   top.no_other_keys();
   return s;
 }
@@ -219,6 +229,7 @@ void set_host_key(Scene &scene, const std::string &section, const std::string &k
   else if (section == "domain") fields(scene.domain, set);
   else if (section == "powder") fields(scene.powder, set);
   else if (section == "time") fields(scene.time, set);
+  else if (section == "layers") fields(scene.layers, set);
   if (!found) throw InputError("error: " + path + "." + key + ": the scene has no such key");
 }
 

@@ -58,6 +58,14 @@ struct Substrate {
   nlohmann::json law = nlohmann::json::object();
 };
 
+// Spreading layer upon layer: after each pass the platform drops by `thickness`, a new heap of the
+// same powder is fed and spread onto the bed. count 1 (the default) is a single pass onto the plate;
+// the section then stays out of the scene's JSON form, so the hashes of single-layer scenes stand.
+struct Layers {
+  std::int64_t count = 1;
+  double thickness = 50e-6;  // m, the platform's drop between two passes
+};
+
 enum class Precision { float64, float32 };
 
 struct Scene {
@@ -73,6 +81,7 @@ struct Scene {
   PluginChoice contact;  // particle-particle law
   Substrate substrate;
   SpreaderChoice spreader;
+  Layers layers;
 };
 
 // "double" or "float", as scene.json writes it.
@@ -87,8 +96,8 @@ Scene read_scene_file(const std::filesystem::path &file);
 // Writes it (atomically), as read_scene_file reads it.
 void write_scene_file(const std::filesystem::path &file, const Scene &scene);
 
-// Sets one host key (section "" for the top level: precision, gravity ...; else domain, powder or
-// time) from an SI JSON value of the key's type; throws InputError for a key the scene lacks.
+// Sets one host key (section "" for the top level: precision, gravity ...; else domain, powder,
+// time or layers) from an SI JSON value of the key's type; throws InputError for a key the scene lacks.
 void set_host_key(Scene &scene, const std::string &section, const std::string &key, const nlohmann::json &value);
 
 }  // namespace spreadmap

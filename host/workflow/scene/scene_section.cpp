@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
+#include "workflow/scene/layers_check.hpp"
 #include "workflow/scene/powder_cost.hpp"
 #include "workflow/scene/powder_sizes.hpp"
 #include "workflow/scene/presets.hpp"
@@ -68,6 +69,11 @@ constexpr sm_param_v1 time_params[] = {
     sm::number("sleep_behind", "m", 0, 10, 5e-3, "sleep: only this far behind the spreader's trailing edge"),
 };
 
+constexpr sm_param_v1 layers_params[] = {
+    sm::integer("count", 1, 50, 1, "layers spread one upon the other; 1 = one pass onto the plate"),
+    sm::number("thickness", "m", 1e-7, 0.1, 50e-6, "layer thickness: the platform's drop before each further pass"),
+};
+
 constexpr sm_param_v1 engine_params[] = {
     sm::enumeration("preset", "quick|standard|paper", "quick", "fidelity preset the other keys override"),
     sm::enumeration("precision", "double|float", "double", "floating-point precision of the particle state"),
@@ -86,10 +92,12 @@ constexpr Section host_sections[] = {
     {"domain", domain_params, std::size(domain_params)},
     {"powder", powder_params, std::size(powder_params)},
     {"time", time_params, std::size(time_params)},
+    {"layers", layers_params, std::size(layers_params)},
 };
 
-const std::vector<std::string> scene_keys = {"preset", "precision", "backend", "threads", "deterministic", "gravity",
-                                             "domain", "powder",    "time",    "contact", "substrate",     "spreader"};
+const std::vector<std::string> scene_keys = {"preset",    "precision", "backend", "threads", "deterministic",
+                                             "gravity",   "domain",    "powder",  "time",    "contact",
+                                             "substrate", "spreader",  "layers"};
 
 // The preset's node for a section, overlaid with the user's node (user keys win).
 YAML::Node overlay(const YAML::Node &preset, const YAML::Node &user) {
@@ -237,9 +245,11 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
       engine.contains("preset") && engine["preset"].is_string() ? engine["preset"].get<std::string>() : "quick";
   const YAML::Node p = YAML::Load(preset_text(preset));
 
-  for (const auto &s : host_sections)
+  for (const auto &s : host_sections) {
+    const YAML::Node preset_section = p[s.name] ? p[s.name] : YAML::Node(YAML::NodeType::Map);  // layers: none
     scene[s.name] =
-        validate_split({s.params, s.n}, p[s.name], user[s.name], file, std::string("scene.") + s.name, diag);
+        validate_split({s.params, s.n}, preset_section, user[s.name], file, std::string("scene.") + s.name, diag);
+  }
   const YAML::Node powder = user["powder"] && user["powder"].IsMap() ? user["powder"] : YAML::Node();
   const fs::path scene_dir = fs::path(file).has_parent_path() ? fs::path(file).parent_path() : fs::path(".");
   resolve_size_table(scene["powder"], powder["table"], file, scene_dir, diag);
@@ -312,6 +322,7 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
     return std::nullopt;      // its problems are reported already
   }
   check_powder(*typed, powder, file, registry, diag);
+  if (diag.empty()) check_layers(*typed, user, file, registry, diag);
   return typed;
 }
 

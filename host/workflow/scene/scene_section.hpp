@@ -12,6 +12,7 @@
 //   contact  {use, params{...}}                  particle-particle law
 //   substrate{law{...}}                          the same law with the substrate's overrides
 //   spreader {use, params{...}, law{...}}        geometry and the particle-spreader law
+//   layers   {count, thickness}                  spreading layer upon layer (count 1: one pass)
 #pragma once
 #include <optional>
 #include <string>

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <mutex>
+#include <optional>
 
 #include "core/error.hpp"
 #include "engine/errors.hpp"
@@ -19,6 +20,7 @@
 #include "engine/vtp_io.hpp"
 #include "scene/coverage.hpp"
 #include "workflow/simulate/case_setup.hpp"
+#include "workflow/simulate/layer_feed.hpp"
 
 namespace spreadmap {
 namespace {
@@ -52,28 +54,38 @@ template <class Real> ParticleSet settled_heap(const Scene &scene, PluginRegistr
   return heap;
 }
 
-template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegistry &reg) {
-  const auto &scene = req.scene;
-  ParticleSet heap = settled_heap<Real>(scene, reg, req);
-  const auto run = make_spreading_run<Real>(scene, reg, heap, req.dir / "scene.json");
+// What one pass of the spreader leaves: its end state and the record case.json keeps of it.
+struct Pass {
+  ParticleSet state;
+  nlohmann::json record;
+};
+
+// One pass of the spreader over `start` (settled), resumed from the checkpoint in `dir` when one of
+// this `hash` is there; writes dir/state.vtp (and dir/series/ with snapshots). Empty when the
+// checkpoint could not be resumed (it is removed: the caller starts the pass again). `name` names the
+// pass in the log; `progress` gets the fraction of the pass done.
+template <class Real>
+std::optional<Pass> spread_pass(const Scene &scene, PluginRegistry &reg, const ParticleSet &start, const fs::path &dir,
+                                const fs::path &scene_file, const std::string &hash, const std::string &name,
+                                const std::function<void(double)> &progress) {
+  const auto run = make_spreading_run<Real>(scene, reg, start, scene_file);
   auto &sim = run->sim;
   const auto &spreader_plugin = run->spreader;
 
-  const fs::path checkpoint = req.dir / "checkpoint.bin";
-  const std::string hash = case_hash(scene);
-  const fs::path checkpoint_hash = req.dir / "checkpoint.hash";
+  const fs::path checkpoint = dir / "checkpoint.bin";
+  const fs::path checkpoint_hash = dir / "checkpoint.hash";
   if (fs::exists(checkpoint) && fs::exists(checkpoint_hash) && read_text(checkpoint_hash) == hash) {
     try {
       sim.load_checkpoint(checkpoint);
-      spdlog::info("{}: resuming from its checkpoint at t = {:.4g} s", req.id, sim.time());
+      spdlog::info("{}: resuming from its checkpoint at t = {:.4g} s", name, sim.time());
     } catch (const engine::SetupError &e) {
-      // e.g. written by another version: the case starts again from its settled heap (a half-read
+      // e.g. written by another version: the pass starts again from its settled start (a half-read
       // checkpoint leaves the simulation unusable, so it is built anew)
-      spdlog::warn("{}: its checkpoint cannot be resumed ({}); the case starts again", req.id, e.what());
+      spdlog::warn("{}: its checkpoint cannot be resumed ({}); the case starts again", name, e.what());
       std::error_code ec;
       fs::remove(checkpoint, ec);
       fs::remove(checkpoint_hash, ec);
-      return spread<Real>(req, reg);
+      return std::nullopt;
     }
   }
   const auto spreader = spreader_plugin.description();
@@ -95,11 +107,11 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
   int next_snapshot = 1;
   // resumed: the snapshots written before the checkpoint stay in the series (their time is in the file)
   while (snapshots > 0 && next_snapshot <= snapshots && sim.time() >= duration * next_snapshot / (snapshots + 1)) {
-    const std::string name = "series/state_" + std::to_string(next_snapshot) + ".vtp";
-    if (fs::exists(req.dir / name)) {
-      const double t = engine::read_vtp(req.dir / name).time;
-      series.push_back({t, name});
-      series_record.push_back({{"time", t}, {"file", name}, {"spreader", pose_at(t)}});
+    const std::string file = "series/state_" + std::to_string(next_snapshot) + ".vtp";
+    if (fs::exists(dir / file)) {
+      const double t = engine::read_vtp(dir / file).time;
+      series.push_back({t, file});
+      series_record.push_back({{"time", t}, {"file", file}, {"spreader", pose_at(t)}});
     }
     ++next_snapshot;
   }
@@ -108,13 +120,13 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
       sim, spreader_plugin, scene, duration,
       [&](const engine::Simulation<Real> &s) {
         const auto now = std::chrono::steady_clock::now();
-        if (req.progress) req.progress(0.1 + 0.9 * s.time() / duration, "");
+        if (progress) progress(s.time() / duration);
         if (next_snapshot <= snapshots && s.time() >= duration * next_snapshot / (snapshots + 1)) {
-          const std::string name = "series/state_" + std::to_string(next_snapshot) + ".vtp";
-          fs::create_directories(req.dir / "series");
-          engine::write_vtp(req.dir / name, s.state(), s.time());
-          series.push_back({s.time(), name});
-          series_record.push_back({{"time", s.time()}, {"file", name}, {"spreader", pose_at(s.time())}});
+          const std::string file = "series/state_" + std::to_string(next_snapshot) + ".vtp";
+          fs::create_directories(dir / "series");
+          engine::write_vtp(dir / file, s.state(), s.time());
+          series.push_back({s.time(), file});
+          series_record.push_back({{"time", s.time()}, {"file", file}, {"spreader", pose_at(s.time())}});
           ++next_snapshot;
         }
         if (stop_requested()) return false;
@@ -127,25 +139,21 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
       100);
   if (!ok) {
     save_checkpoint();
-    throw Interrupted("interrupted: " + req.id + " saved its checkpoint at t = " + fmt::format("{:.4g}", sim.time()) +
+    throw Interrupted("interrupted: " + name + " saved its checkpoint at t = " + fmt::format("{:.4g}", sim.time()) +
                       " s; run the same command again to resume");
   }
-  const ParticleSet state = sim.state();
-  engine::write_vtp(req.dir / "state.vtp", state, sim.time());
+  Pass pass{sim.state(), {}};
+  engine::write_vtp(dir / "state.vtp", pass.state, sim.time());
   if (!series.empty()) {
     series.push_back({sim.time(), "state.vtp"});
     series_record.push_back({{"time", sim.time()}, {"file", "state.vtp"}, {"spreader", pose_at(sim.time())}});
-    engine::write_pvd(req.dir / "series.pvd", series);
+    engine::write_pvd(dir / "series.pvd", series);
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const auto &c = sim.counters();
-  nlohmann::json out = {
-      {"id", req.id},
-      {"hash", hash},
-      {"status", "done"},
-      {"inputs", req.inputs},
-      {"particles_start", heap.size()},
-      {"particles_end", state.size()},
+  pass.record = {
+      {"particles_start", start.size()},
+      {"particles_end", pass.state.size()},
       {"removed", sim.removed_count()},
       {"steps", sim.step_count()},
       {"dt", sim.dt()},
@@ -160,16 +168,135 @@ template <class Real> nlohmann::json spread(const CaseRequest &req, PluginRegist
       {"spreader", to_json(spreader)},
       {"spreader_end", pose_at(sim.time())},
   };
-  if (!series_record.empty()) out["series"] = series_record;
-  // what case_finished checks on a re-run: a state damaged or replaced since makes the case run again
-  const std::string state_text = read_text(req.dir / "state.vtp");
-  out["state_bytes"] = state_text.size();
-  out["state_hash"] = stable_hash(state_text);
-  write_atomic(req.dir / "case.json", out.dump(2) + "\n");
+  if (!series_record.empty()) pass.record["series"] = series_record;
+  return pass;
+}
+
+// Writes `record` as dir/RECORD with the fingerprint of dir/state.vtp (what a re-run checks: a state
+// damaged or replaced since makes it run again), then removes the pass's checkpoint.
+nlohmann::json write_finished(const fs::path &dir, const std::string &record_name, nlohmann::json record) {
+  const std::string state_text = read_text(dir / "state.vtp");
+  record["state_bytes"] = state_text.size();
+  record["state_hash"] = stable_hash(state_text);
+  write_atomic(dir / record_name, record.dump(2) + "\n");
   std::error_code ec;
-  fs::remove(checkpoint, ec);
-  fs::remove(checkpoint_hash, ec);
-  return out;
+  fs::remove(dir / "checkpoint.bin", ec);
+  fs::remove(dir / "checkpoint.hash", ec);
+  return record;
+}
+
+// True when dir/RECORD is a finished result of this hash, its state.vtp intact.
+bool finished(const fs::path &dir, const std::string &record_name, const std::string &hash) {
+  std::error_code ec;
+  if (!fs::exists(dir / record_name, ec) || !fs::exists(dir / "state.vtp", ec)) return false;
+  try {
+    const auto j = nlohmann::json::parse(read_text(dir / record_name));
+    if (j.value("hash", "") != hash || j.value("status", "") != "done") return false;
+    if (!j.contains("state_bytes")) return true;  // written before the state was fingerprinted
+    if (fs::file_size(dir / "state.vtp", ec) != j["state_bytes"].get<std::uintmax_t>() || ec) return false;
+    return stable_hash(read_text(dir / "state.vtp")) == j.value("state_hash", "");
+  } catch (...) {
+    return false;
+  }
+}
+
+template <class Real> nlohmann::json spread_one_layer(const CaseRequest &req, PluginRegistry &reg) {
+  const auto &scene = req.scene;
+  std::optional<Pass> pass;
+  while (!pass) {
+    const ParticleSet heap = settled_heap<Real>(scene, reg, req);
+    pass = spread_pass<Real>(scene, reg, heap, req.dir, req.dir / "scene.json", case_hash(scene), req.id,
+                             [&req](double f) {
+                               if (req.progress) req.progress(0.1 + 0.9 * f, "");
+                             });
+  }
+  nlohmann::json out = pass->record;
+  out["id"] = req.id;
+  out["hash"] = case_hash(scene);
+  out["status"] = "done";
+  out["inputs"] = req.inputs;
+  return write_finished(req.dir, "case.json", out);
+}
+
+// Layer upon layer (layer_feed.hpp): layer k's pass in cases/cNNN/layer_k/ (state.vtp, layer.json),
+// each written once finished; a re-run skips the finished layers and resumes the one it was on. The
+// case's state.vtp is the last layer's.
+template <class Real> nlohmann::json spread_layers(const CaseRequest &req, PluginRegistry &reg) {
+  const auto &scene = req.scene;
+  const int count = static_cast<int>(scene.layers.count);
+  const std::string hash = case_hash(scene);
+  const ParticleSet heap = settled_heap<Real>(scene, reg, req);
+  nlohmann::json layers = nlohmann::json::array();
+  ParticleSet bed;
+  std::size_t fed = 0;
+  for (int k = 1; k <= count; ++k) {
+    const fs::path dir = req.dir / layer_folder(k);
+    const std::string name = req.id + " layer " + std::to_string(k);
+    if (finished(dir, "layer.json", hash)) {
+      spdlog::info("{}: finished before, read back", name);
+      bed = engine::read_vtp(dir / "state.vtp").particles;
+      layers.push_back(nlohmann::json::parse(read_text(dir / "layer.json")));
+      fed += layers.back().value("particles_fed", std::size_t(0));
+      continue;
+    }
+    fs::create_directories(dir);
+    const Scene raised = layer_scene(scene, k);
+    auto progress = [&](double f) {
+      if (req.progress) req.progress(0.1 + 0.9 * (k - 1 + f) / count, "layer " + std::to_string(k));
+    };
+    std::optional<Pass> pass;
+    std::size_t removed_settling = 0, fed_here = heap.size();
+    while (!pass) {
+      ParticleSet start = heap;
+      bool resumed = false;
+      if (k > 1) {
+        const ParticleSet fed_bed = fed_onto_bed(raised, reg, req.dir / "scene.json", bed, heap);
+        fed_here = fed_bed.size() - bed.size();
+        resumed = fs::exists(dir / "checkpoint.hash") && read_text(dir / "checkpoint.hash") == hash;
+        // resumed: the checkpoint replaces the start, so the settling is not run again
+        start = resumed ? fed_bed : settle_on_bed<Real>(raised, reg, name, req.dir / "scene.json", fed_bed);
+        removed_settling = fed_bed.size() - start.size();
+      }
+      pass = spread_pass<Real>(raised, reg, start, dir, req.dir / "scene.json", hash, name, progress);
+      // resumed, the settling's losses are what the checkpoint's state lacks beyond the pass's own
+      if (pass && resumed)
+        removed_settling = start.size() - pass->state.size() - pass->record["removed"].get<std::size_t>();
+    }
+    nlohmann::json record = pass->record;
+    record["layer"] = k;
+    record["hash"] = hash;
+    record["status"] = "done";
+    record["platform_drop"] = platform_drop(scene, k);
+    record["particles_fed"] = fed_here;
+    record["removed_settling"] = removed_settling;
+    bed = std::move(pass->state);
+    fed += fed_here;
+    layers.push_back(write_finished(dir, "layer.json", record));
+  }
+  // the case's state: the last layer's, byte for byte
+  write_atomic(req.dir / "state.vtp", read_text(req.dir / layer_folder(count) / "state.vtp"));
+  const nlohmann::json &last = layers.back();
+  std::size_t removed = 0;
+  double steps = 0;
+  for (const auto &l : layers) {
+    removed += l.value("removed", std::size_t(0)) + l.value("removed_settling", std::size_t(0));
+    steps += l.value("steps", 0.0);
+  }
+  nlohmann::json out = {{"id", req.id},
+                        {"hash", hash},
+                        {"status", "done"},
+                        {"inputs", req.inputs},
+                        {"layers", layers},
+                        {"particles_start", heap.size()},
+                        {"particles_fed", fed},
+                        {"particles_end", bed.size()},
+                        {"removed", removed},
+                        {"steps", steps},
+                        {"simulated_time", last["simulated_time"]},
+                        {"precision", precision_name(scene.precision)},
+                        {"spreader", last["spreader"]},
+                        {"spreader_end", last["spreader_end"]}};
+  return write_finished(req.dir, "case.json", out);
 }
 
 }  // namespace
@@ -197,19 +324,9 @@ std::string heap_hash(const Scene &scene, PluginRegistry &registry) {
   return stable_hash(s.dump());
 }
 
-bool case_finished(const fs::path &dir, const std::string &hash) {
-  std::error_code ec;
-  if (!fs::exists(dir / "case.json", ec) || !fs::exists(dir / "state.vtp", ec)) return false;
-  try {
-    const auto j = nlohmann::json::parse(read_text(dir / "case.json"));
-    if (j.value("hash", "") != hash || j.value("status", "") != "done") return false;
-    if (!j.contains("state_bytes")) return true;  // written before the state was fingerprinted
-    if (fs::file_size(dir / "state.vtp", ec) != j["state_bytes"].get<std::uintmax_t>() || ec) return false;
-    return stable_hash(read_text(dir / "state.vtp")) == j.value("state_hash", "");
-  } catch (...) {
-    return false;
-  }
-}
+bool case_finished(const fs::path &dir, const std::string &hash) { return finished(dir, "case.json", hash); }
+
+std::string layer_folder(int layer) { return "layer_" + std::to_string(layer); }
 
 nlohmann::json run_case(const CaseRequest &request, PluginRegistry &registry) {
   fs::create_directories(request.dir);
@@ -217,8 +334,10 @@ nlohmann::json run_case(const CaseRequest &request, PluginRegistry &registry) {
   if (request.threads > 0) omp_set_num_threads(request.threads);
   CaseRequest effective = request;  // the scene the engine runs: coarse graining applied
   effective.scene = coarse_grained(request.scene, registry);
-  if (effective.scene.precision == Precision::float32) return spread<float>(effective, registry);
-  return spread<double>(effective, registry);
+  const bool layered = effective.scene.layers.count > 1;
+  if (effective.scene.precision == Precision::float32)
+    return layered ? spread_layers<float>(effective, registry) : spread_one_layer<float>(effective, registry);
+  return layered ? spread_layers<double>(effective, registry) : spread_one_layer<double>(effective, registry);
 }
 
 }  // namespace spreadmap

@@ -1,7 +1,9 @@
 // One case of the design: the settled heap (computed once per distinct heap and shared by every
 // case that has the same powder, domain, contacts and spreader position), then the spreading run,
 // with checkpoints every `time.checkpoint_interval` wall-clock seconds and a clean stop on SIGINT.
-// Writes state.vtp (+ series/ and series.pvd when snapshots are asked for) and case.json.
+// Writes state.vtp (+ series/ and series.pvd when snapshots are asked for) and case.json. With
+// scene.layers.count > 1, each layer's pass in layer_K/ (state.vtp, layer.json), the last one's
+// state as the case's state.vtp.
 #pragma once
 #include <filesystem>
 #include <functional>
@@ -34,6 +36,9 @@ std::string heap_hash(const Scene &scene, PluginRegistry &registry);
 // True when the case folder holds a finished result for exactly these inputs, its state.vtp intact
 // (the size and hash case.json recorded).
 bool case_finished(const fs::path &dir, const std::string &hash);
+
+// The folder of layer k (1-based) of a multi-layer case, inside its case folder: "layer_2".
+std::string layer_folder(int layer);
 
 // Runs (or resumes) the case; returns the case.json content. Throws Interrupted on SIGINT/SIGTERM
 // after saving a checkpoint, RunFailure when the simulation becomes unstable.

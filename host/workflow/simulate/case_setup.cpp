@@ -10,6 +10,7 @@
 #include "core/stop.hpp"
 #include "scene/heap.hpp"
 #include "workflow/scene/powder_sizes.hpp"
+#include "workflow/simulate/layer_feed.hpp"
 
 namespace spreadmap {
 
@@ -97,6 +98,44 @@ scene_file::LoadedScene case_scene(const Scene &scene, const fs::path &scene_fil
   return l;
 }
 
+// The spreader rests at its start for t < 0: while a heap settles it sees times before that.
+double rest_shift(const Scene &scene) { return -(scene.powder.settle_time + 1.0); }
+
+// No sphere within a twentieth of the largest diameter of the spreader at rest.
+double heap_clearance(const Scene &scene) { return 0.05 * size_distribution(scene.powder).upper(); }
+
+// Runs a settling scene under gravity for at least 0.3 x settle_time and at most settle_time, until
+// the fastest sphere is slower than settle_speed. Throws Interrupted on SIGINT/SIGTERM.
+template <class Real>
+ParticleSet settle_scene(const scene_file::LoadedScene &settling, PluginRegistry &reg, const Powder &powder,
+                         const std::string &label, const std::string &what,
+                         const std::function<void(double)> &progress) {
+  const double t_settle = powder.settle_time, v_rest = powder.settle_speed;
+  const auto run = scene_file::build_scene<Real>(settling, reg);
+  auto &sim = *run->sim;
+  const double min_time = 0.3 * t_settle;
+  sim.run_until(
+      t_settle,
+      [&](const engine::Simulation<Real> &s) {
+        if (stop_requested()) return false;
+        if (progress) progress(s.time() / t_settle);
+        if (s.time() < min_time) return true;
+        const auto &a = s.arrays();
+        Real vmax2 = 0;
+        for (std::size_t i = 0; i < s.size(); ++i)
+          vmax2 = std::max(vmax2, a.vx[i] * a.vx[i] + a.vy[i] * a.vy[i] + a.vz[i] * a.vz[i]);
+        return std::sqrt(double(vmax2)) > v_rest;
+      },
+      200);
+  if (stop_requested())
+    throw Interrupted("interrupted while settling the " + what + " of " + label +
+                      ": run the same command again to resume");
+  auto state = sim.state();
+  spdlog::info("{}: {} settled after {:.3g} s ({} steps, {} removed)", label, what, sim.time(), sim.step_count(),
+               sim.removed_count());
+  return state;
+}
+
 }  // namespace
 
 engine::Domain make_domain(const Scene &scene) {
@@ -122,9 +161,7 @@ ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::stri
   const auto dom = make_domain(scene);
   const PluginInstance spreader = bind_spreader(scene, reg, scene_file);
   const scene_file::BoundSpreader at_rest{&spreader, 0.0};
-  const double t_settle = powder.settle_time, v_rest = powder.settle_speed;
-  // The spreader rests at its start for t < 0: while the heap settles it sees times before that.
-  const double rest_shift = -(t_settle + 1.0);
+  const double t_settle = powder.settle_time;
 
   scene::HeapSpec spec;
   const auto sizes = size_distribution(powder);
@@ -137,11 +174,10 @@ ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::stri
   if (powder.volume > 0) spec.solid_volume = powder.volume;
   else spec.count = static_cast<std::size_t>(powder.count);
   spec.max_top = dom.hi[2] - 0.5 * dmax;
-  // No sphere within a twentieth of the largest diameter of the spreader at rest.
-  const double clearance = 0.05 * dmax;
+  const double clearance = heap_clearance(scene);
   spec.excluded = [&](double x, double y, double z, double r) {
     const double centre[3] = {x, y, z};
-    return at_rest.ops().touches(spreader.get(), rest_shift, centre, r + clearance) != 0;
+    return at_rest.ops().touches(spreader.get(), rest_shift(scene), centre, r + clearance) != 0;
   };
   const scene::Heap heap = scene::insert_heap(spec);
   spdlog::info("{}: heap of {} spheres inserted (top {:.2f} mm), settling {:.3g} s", label, heap.size(), heap.top * 1e3,
@@ -157,29 +193,46 @@ ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::stri
   settling.scene.walls = {plane("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, scene.substrate.law),
                           plane("heap back wall", "scene.spreader", {spec.region.lo[0], 0, 0}, {1, 0, 0}, wall_law),
                           plane("heap front wall", "scene.spreader", {spec.region.hi[0], 0, 0}, {-1, 0, 0}, wall_law),
-                          spreader_wall(scene, reg, rest_shift)};
-  const auto run = scene_file::build_scene<Real>(settling, reg);
-  auto &sim = *run->sim;
-  const double min_time = 0.3 * t_settle;
-  sim.run_until(
-      t_settle,
-      [&](const engine::Simulation<Real> &s) {
-        if (stop_requested()) return false;
-        if (progress) progress(s.time() / t_settle);
-        if (s.time() < min_time) return true;
-        const auto &a = s.arrays();
-        Real vmax2 = 0;
-        for (std::size_t i = 0; i < s.size(); ++i)
-          vmax2 = std::max(vmax2, a.vx[i] * a.vx[i] + a.vy[i] * a.vy[i] + a.vz[i] * a.vz[i]);
-        return std::sqrt(double(vmax2)) > v_rest;
-      },
-      200);
-  if (stop_requested())
-    throw Interrupted("interrupted while settling the heap of " + label + ": run the same command again to resume");
-  auto state = sim.state();
-  spdlog::info("{}: heap settled after {:.3g} s ({} steps, {} removed)", label, sim.time(), sim.step_count(),
-               sim.removed_count());
-  return state;
+                          spreader_wall(scene, reg, rest_shift(scene))};
+  return settle_scene<Real>(settling, reg, scene.powder, label, "heap", progress);
+}
+
+ParticleSet fed_onto_bed(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file, const ParticleSet &bed,
+                         const ParticleSet &heap) {
+  const PluginInstance spreader = bind_spreader(scene, reg, scene_file);
+  const scene_file::BoundSpreader at_rest{&spreader, 0.0};
+  auto touches = [&](double x, double y, double z, double r) {
+    const double centre[3] = {x, y, z};
+    return at_rest.ops().touches(spreader.get(), rest_shift(scene), centre, r) != 0;
+  };
+  std::size_t touching = 0;
+  for (std::size_t i = 0; i < bed.size(); ++i) touching += touches(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]);
+  if (touching)
+    throw InputError(
+        fmt::format("error: {}: scene.layers.thickness: {} spheres of the bed touch the spreader at its "
+                    "start, raised by the platform's drop\n  use thicker layers or a larger gap",
+                    scene_file.string(), touching));
+  const double clearance = heap_clearance(scene);
+  ParticleSet fed = feed_heap(bed, heap, clearance,
+                              [&](double x, double y, double z, double r) { return touches(x, y, z, r + clearance); });
+  double top = 0;
+  for (std::size_t i = bed.size(); i < fed.size(); ++i) top = std::max(top, fed.z[i] + fed.radius[i]);
+  if (top > scene.domain.height)
+    throw InputError(fmt::format("error: {}: scene.layers: the heap fed onto the bed reaches z = {:.3g} mm, above the "
+                                 "domain's height {:.3g} mm\n  make the domain taller (domain.height) or let the heap "
+                                 "settle longer (powder.settle_time)",
+                                 scene_file.string(), top * 1e3, scene.domain.height * 1e3));
+  return fed;
+}
+
+template <class Real>
+ParticleSet settle_on_bed(const Scene &scene, PluginRegistry &reg, const std::string &label, const fs::path &scene_file,
+                          const ParticleSet &fed, const std::function<void(double)> &progress) {
+  auto settling = case_scene(scene, scene_file);
+  settling.particles.set = fed;
+  settling.scene.walls = {plane("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, scene.substrate.law),
+                          spreader_wall(scene, reg, rest_shift(scene))};
+  return settle_scene<Real>(settling, reg, scene.powder, label, "heap fed onto the bed", progress);
 }
 
 template <class Real>
@@ -216,6 +269,10 @@ template ParticleSet settle_heap<double>(const Scene &, PluginRegistry &, const 
                                          const std::function<void(double)> &);
 template ParticleSet settle_heap<float>(const Scene &, PluginRegistry &, const std::string &, const fs::path &,
                                         const std::function<void(double)> &);
+template ParticleSet settle_on_bed<double>(const Scene &, PluginRegistry &, const std::string &, const fs::path &,
+                                           const ParticleSet &, const std::function<void(double)> &);
+template ParticleSet settle_on_bed<float>(const Scene &, PluginRegistry &, const std::string &, const fs::path &,
+                                          const ParticleSet &, const std::function<void(double)> &);
 template struct SpreadingRun<double>;
 template struct SpreadingRun<float>;
 template std::unique_ptr<SpreadingRun<double>> make_spreading_run<double>(const Scene &, PluginRegistry &,

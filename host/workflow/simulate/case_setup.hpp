@@ -48,6 +48,20 @@ template <class Real>
 engine::ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::string &label,
                                 const fs::path &scene_file, const std::function<void(double)> &progress = {});
 
+// Layer k >= 2 of a multi-layer case (`scene` is layer_scene(): its spreader raised). The bed with
+// the heap fed on it (layer_feed.hpp), less the heap's spheres within the insertion's clearance of
+// the raised spreader at rest. Throws InputError when a sphere of the bed touches that spreader.
+engine::ParticleSet fed_onto_bed(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file,
+                                 const engine::ParticleSet &bed, const engine::ParticleSet &heap);
+
+// That fed bed settled under gravity on the substrate, the raised spreader at rest at its start, by
+// the first heap's rule (at least 0.3 x settle_time, until the fastest sphere is slower than
+// settle_speed). Throws Interrupted on SIGINT/SIGTERM.
+template <class Real>
+engine::ParticleSet settle_on_bed(const Scene &scene, PluginRegistry &reg, const std::string &label,
+                                  const fs::path &scene_file, const engine::ParticleSet &fed,
+                                  const std::function<void(double)> &progress = {});
+
 // The spreading run built from spreading_scene(). The Simulation points into the plugins `built` keeps.
 template <class Real> struct SpreadingRun {
   std::unique_ptr<scene_file::SceneRun<Real>> built;

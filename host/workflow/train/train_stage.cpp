@@ -1,7 +1,10 @@
 // train: fits each named surrogate to metrics.csv (inputs: the design's variables; outputs: V_s
 // and R_q unless given) and scores it (cross-validated, and as the study's Table 4 under a
-// holdout), into train/<model>/.
+// holdout), into train/<model>/. After a multi-layer simulation (metrics.csv has a `layer` column)
+// it trains on the last layer's rows: the bed the spreader meets once the layers below settled.
 #include <spdlog/spdlog.h>
+
+#include <algorithm>
 
 #include "analysis/table.hpp"
 #include "core/error.hpp"
@@ -13,6 +16,22 @@
 
 namespace spreadmap {
 namespace {
+
+analysis::Table last_layer_rows(const analysis::Table &table) {
+  if (!table.has_column("layer")) return table;
+  const auto layers = table.numbers("layer");
+  const double last = *std::max_element(layers.begin(), layers.end());
+  analysis::Table out(table.columns(), table.source() + " (layer " + analysis::Table::format(last) + ")");
+  for (std::size_t r = 0; r < table.rows(); ++r)
+    if (layers[r] == last) {
+      std::vector<std::string> cells;
+      for (std::size_t c = 0; c < table.cols(); ++c) cells.push_back(table.text(r, c));
+      out.add_row(cells);
+    }
+  spdlog::info("train: metrics.csv holds {} layers per case; training on the last one ({} rows)",
+               analysis::Table::format(last), out.rows());
+  return out;
+}
 
 class TrainStage : public Stage {
  public:
@@ -26,7 +45,7 @@ class TrainStage : public Stage {
     const fs::path csv = ctx.run.metrics_csv();
     if (!fs::exists(csv))
       throw InputError("error: train: " + csv.string() + " does not exist; run the characterise stage first");
-    const auto table = analysis::Table::read_csv(csv.string());
+    const auto table = last_layer_rows(analysis::Table::read_csv(csv.string()));
     std::vector<std::string> inputs = config_.inputs;
     if (inputs.empty())
       for (const auto &v : ctx.run.manifest()["design"].value("variables", nlohmann::json::array()))
