@@ -28,7 +28,7 @@ void check_layers(const Scene &scene, const YAML::Node &user, const std::string 
     diag.error(
         where("count"), "scene.layers.count",
         fmt::format("the spreader '{}' has no gap: the platform's drop cannot be applied to it", scene.spreader.use),
-        "use a spreader with a gap (roller, blade, oscillating_roller) or set layers.count: 1");
+        "use a spreader plugin with a gap parameter (spreadmap plugins spreader lists them) or set layers.count: 1");
     return;
   }
   const double gap = scene.spreader.params["gap"].get<double>();
