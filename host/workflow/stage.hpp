@@ -55,7 +55,8 @@ class Stage {
 };
 
 std::unique_ptr<Stage> make_simulate_stage();
-std::unique_ptr<Stage> make_characterise_stage();
+// verify_rounds > 0: the verify loop's own, which also measures the runs of its first rounds.
+std::unique_ptr<Stage> make_characterise_stage(std::size_t verify_rounds = 0);
 std::unique_ptr<Stage> make_train_stage();
 std::unique_ptr<Stage> make_map_stage();
 std::unique_ptr<Stage> make_tradeoff_stage();

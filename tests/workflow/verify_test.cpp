@@ -79,3 +79,59 @@ TEST(Verify, TheVerifiedOptimumHoldsItsPredictionItsRunsAndTheVerdict) {
   EXPECT_EQ(t::json_file(run / "map/verified.json"), verified);
   if (!HasFailure()) fs::remove_all(run);
 }
+
+// The verify loop (tiny_verify_loop.yaml: one run per design point, so the first model learns its
+// noise from 4 rows only). Each round's verdict follows from its numbers, the loop stops at the
+// first verified round, an unverified round's runs join metrics.csv as one replicated point and the
+// refitted model's interval widens (the replicate scatter is now data); run again, nothing is
+// simulated twice and the answer is the same.
+TEST(Verify, TheLoopRefitsWithItsRunsUntilTheOptimumHolds) {
+  const fs::path workflow = fs::path(SPREADMAP_SOURCE_DIR) / "tests/workflow/data/verify/tiny_verify_loop.yaml";
+  const fs::path run = t::fresh_run_directory("spreadmap_verify_loop");
+  const auto first = t::run({{"run", workflow.string(), "--out", run.string(), "--jobs", "2"}, {}, {}, {}});
+  ASSERT_EQ(first.exit_code, 0) << first.describe();
+  const auto verified = t::json_file(run / "map/verified.json");
+  ASSERT_TRUE(verified.contains("earlier_rounds")) << verified.dump(2);
+  const auto &earlier = verified["earlier_rounds"];
+  const std::size_t rounds = verified["round"];
+  ASSERT_EQ(earlier.size() + 1, rounds);
+  ASSERT_GE(rounds, 2u) << "the first model verified at once: the loop was not exercised";
+  for (const auto &r : earlier) EXPECT_FALSE(r["verified"].get<bool>());
+  EXPECT_EQ(verified["verified"].get<bool>(), verified["points"][0]["verified"].get<bool>());
+  EXPECT_TRUE(verified["verified"].get<bool>() || rounds == 3u);
+  EXPECT_TRUE(t::contains(first.err, "round 1 of 3 not verified: its 3 runs join the training data")) << first.err;
+  for (const auto &round : earlier)
+    for (const auto &p : round["points"])
+      for (const std::string m : {"vs", "rq"}) {
+        const auto &c = p["metrics"][m];
+        const double mean = c["simulated_mean"], lo = c["interval"][0], hi = c["interval"][1];
+        EXPECT_EQ(c["inside"].get<bool>(), lo <= mean && mean <= hi);
+      }
+  // the unverified rounds' runs are rows of metrics.csv, one replicated point each round
+  const auto table = t::csv_columns(run / "metrics.csv");
+  std::size_t verify_rows = 0;
+  for (std::size_t r = 0; r < table.at("case").size(); ++r)
+    if (table.at("case")[r].rfind("verify/", 0) == 0) {
+      ++verify_rows;
+      EXPECT_EQ(table.at("replicates")[r], "3");
+    }
+  EXPECT_EQ(verify_rows, rounds - 1);
+  EXPECT_EQ(table.at("case").size(), 4 + rounds - 1);
+  // round 1's model knew no scatter: its R_q interval was narrower than the refitted one
+  const double sd0 = earlier[0]["points"][0]["metrics"]["rq"]["predicted_std"];
+  const double sd1 = (rounds == 2 ? verified : earlier[1])["points"][0]["metrics"]["rq"]["predicted_std"];
+  EXPECT_GT(sd1, sd0);
+  // the rounds' runs are different heaps
+  const auto v0 = earlier[0]["points"][0]["metrics"]["rq"]["simulated"].get<std::vector<double>>();
+  const auto v1 =
+      (rounds == 2 ? verified : earlier[1])["points"][0]["metrics"]["rq"]["simulated"].get<std::vector<double>>();
+  for (double a : v0)
+    for (double b : v1) EXPECT_NE(a, b);
+
+  const auto again = t::run({{"run", workflow.string(), "--out", run.string()}, {}, {}, {}});
+  ASSERT_EQ(again.exit_code, 0) << again.describe();
+  EXPECT_FALSE(t::contains(again.err, "to run, 0 finished")) << again.err;
+  EXPECT_TRUE(t::contains(again.err, "verify: 1 points x 3 runs, 0 to run, 3 finished already")) << again.err;
+  EXPECT_EQ(t::json_file(run / "map/verified.json"), verified);
+  if (!HasFailure()) fs::remove_all(run);
+}

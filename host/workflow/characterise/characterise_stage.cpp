@@ -2,7 +2,9 @@
 // case folder), gathered in metrics.csv with one row per case and the unit of every column in
 // metrics.units.json. A multi-layer case (scene.layers) has one row per layer, evaluated in its
 // layer_K folder, and metrics.csv then a `layer` column after `case`. A case whose state and
-// settings did not change is not evaluated again.
+// settings did not change is not evaluated again. The verify loop's characterise (`verify: {rounds:
+// N}`) also measures the verify runs the loop added to the manifest (`verify_cases`) of the rounds
+// before it, so that the model is refitted with them.
 // Replicated points (simulate: replicates) get one row per point in metrics.csv (each metric's
 // mean, its _std over the replicates, and `replicates`); every run's own row is kept in
 // metrics_replicates.csv.
@@ -22,6 +24,8 @@ namespace {
 
 class CharacteriseStage : public Stage {
  public:
+  explicit CharacteriseStage(std::size_t verify_rounds) : verify_rounds_(verify_rounds) {}
+
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     settings_ = read_characterise_settings(wf, entry.config, scene, registry, diag);
@@ -40,9 +44,12 @@ class CharacteriseStage : public Stage {
 
     std::vector<nlohmann::json> results;
     std::size_t evaluated = 0, missing = 0;
-    for (const auto &c : manifest["cases"]) {
+    nlohmann::json cases = manifest["cases"];
+    for (const auto &c : manifest.value("verify_cases", nlohmann::json::array()))
+      if (c.value("round", verify_rounds_) < verify_rounds_) cases.push_back(c);
+    for (const auto &c : cases) {
       const std::string id = c["id"];
-      const fs::path dir = ctx.run.case_dir(id);
+      const fs::path dir = c.contains("dir") ? ctx.run.root() / c["dir"].get<std::string>() : ctx.run.case_dir(id);
       if (!case_done(dir, c.value("hash", ""))) {
         ++missing;
         continue;
@@ -62,7 +69,7 @@ class CharacteriseStage : public Stage {
     }
     if (missing)
       spdlog::warn("characterise: {} of {} cases have no finished state; run the simulate stage to complete them",
-                   missing, manifest["cases"].size());
+                   missing, cases.size());
     write_table(ctx, inputs, manifest, results);
     spdlog::info("characterise: {} cases in metrics.csv ({} evaluated, {} up to date)", results.size(), evaluated,
                  results.size() - evaluated);
@@ -142,10 +149,13 @@ class CharacteriseStage : public Stage {
   }
 
   CharacteriseSettings settings_;
+  std::size_t verify_rounds_ = 0;  // the verify loop's rounds whose runs are measured too
 };
 
 }  // namespace
 
-std::unique_ptr<Stage> make_characterise_stage() { return std::make_unique<CharacteriseStage>(); }
+std::unique_ptr<Stage> make_characterise_stage(std::size_t verify_rounds) {
+  return std::make_unique<CharacteriseStage>(verify_rounds);
+}
 
 }  // namespace spreadmap

@@ -13,15 +13,20 @@
 
 namespace spreadmap {
 
+Scene verify_run_scene(const VerifyPoint &point, std::size_t first_seed, std::size_t r) {
+  return replicate_scene(point.scene, max_replicates + first_seed + r);
+}
+
 std::vector<std::vector<nlohmann::json>> run_and_measure(StageContext &ctx, const std::vector<VerifyPoint> &points,
-                                                         std::size_t runs, const CharacteriseSettings &settings) {
+                                                         std::size_t runs, std::size_t first_seed,
+                                                         const CharacteriseSettings &settings) {
   std::vector<std::vector<CaseRequest>> requests(points.size());
   CaseBatch batch{{}, points.size() * runs, "verify"};
   for (std::size_t p = 0; p < points.size(); ++p)
     for (std::size_t r = 0; r < runs; ++r) {
       CaseRequest req;
       req.id = replicate_id(points[p].id, r);
-      req.scene = replicate_scene(points[p].scene, max_replicates + r);
+      req.scene = verify_run_scene(points[p], first_seed, r);
       req.inputs = points[p].inputs;
       req.dir = ctx.run.root() / "verify" / req.id;
       req.heaps = ctx.run.heaps();

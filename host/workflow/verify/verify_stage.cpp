@@ -4,14 +4,22 @@
 // its interval (verify/verification.hpp). Writes map/verified.json; a point is verified when the
 // simulated mean of V_s and of R_q both fall inside their predicted intervals, the answer when every
 // point is. An optimum on the border of the trained box is flagged: the true optimum may lie outside.
+// `rounds: N` (default 1) loops: while the answer is not verified and rounds are left, the round's
+// runs join the training data (the manifest's verify_cases), characterise, train and map run again
+// as the workflow sets them, and the optimum they propose is verified with new heaps. Run again,
+// the loop replays its rounds from the same data, so nothing finished is simulated twice.
 #include <spdlog/spdlog.h>
+
+#include <optional>
 
 #include "analysis/replicates.hpp"
 #include "analysis/table.hpp"
 #include "core/error.hpp"
 #include "core/files.hpp"
+#include "core/schema.hpp"
 #include "workflow/map/mapping.hpp"
 #include "workflow/scene/scene_section.hpp"
+#include "workflow/simulate/case_runner.hpp"
 #include "workflow/simulate/replicates.hpp"
 #include "workflow/stage.hpp"
 #include "workflow/figures/figure_style.hpp"
@@ -50,19 +58,26 @@ class VerifyStage : public Stage {
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
-    for (const auto &kv : entry.config)
-      if (kv.first.as<std::string>() != "replicates" && kv.first.as<std::string>() != "render")
-        diag.error(Location::of(file, kv.first), "verify." + kv.first.as<std::string>(), "unknown key",
-                   "known: replicates, render");
+    for (const auto &kv : entry.config) {
+      const std::string key = kv.first.as<std::string>();
+      if (key != "replicates" && key != "render" && key != "rounds")
+        diag.error(Location::of(file, kv.first), "verify." + key, "unknown key", "known: replicates, rounds, render");
+    }
     style_ = figures::read_style(entry.config["render"], true, false, file, "verify.render", diag);
     runs_ = read_replicates(entry.config["replicates"], file, "verify.replicates", default_runs, diag);
+    rounds_ = read_rounds(entry.config["rounds"], file, diag);
     const StageEntry *map = nullptr, *characterise = nullptr;
-    for (const auto &s : wf.stages) {
-      if (&s == &entry) break;
-      if (s.kind == "map") map = &s;
+    for (std::size_t i = 0; i < wf.stages.size() && &wf.stages[i] != &entry; ++i) {
+      if (wf.stages[i].kind == "map") map = &wf.stages[i], map_stage_ = i;
+      if (wf.stages[i].kind == "train") train_stage_ = i;
+      if (wf.stages[i].kind == "characterise") characterise_stage_ = i;
     }
     for (const auto &s : wf.stages)
       if (s.kind == "characterise") characterise = &s;
+    if (rounds_ > 1 && (!characterise_stage_ || !train_stage_))
+      diag.error(Location::of(file, entry.config["rounds"]), "verify.rounds",
+                 "the verify loop refits the model with its runs: it needs characterise and train stages before it",
+                 "add `- characterise` and `- train: {model: gp}` before the map stage, or remove rounds");
     if (!map)
       diag.error(entry.where, "verify",
                  "needs a map stage before it: it verifies the optimum the map proposes (map/optimum.json)",
@@ -78,7 +93,31 @@ class VerifyStage : public Stage {
   }
 
   void run(StageContext &ctx) override {
-    figures::use_style(style_);
+    history_ = nlohmann::json::array();
+    for (std::size_t round = 0;; ++round) {
+      figures::use_style(style_);
+      const Round r = verify_round(ctx, round);
+      if (r.verified || round + 1 >= rounds_) {
+        if (rounds_ > 1)
+          spdlog::info("verify: {} after {} of {} rounds", r.verified ? "verified" : "NOT verified", round + 1,
+                       rounds_);
+        return;
+      }
+      spdlog::info("verify: round {} of {} not verified: its {} runs join the training data and the map proposes again",
+                   round + 1, rounds_, r.points.size() * runs_);
+      add_runs_to_manifest(ctx, r.points, round);
+      refit(ctx, round + 1);
+    }
+  }
+
+ private:
+  struct Round {
+    std::vector<VerifyPoint> points;
+    bool verified = false;
+  };
+
+  // One round: the map's current optimum simulated with new heaps and compared with the model.
+  Round verify_round(StageContext &ctx, std::size_t round) {
     const fs::path optimum_json = ctx.run.map_dir() / "optimum.json";
     if (!fs::exists(optimum_json))
       throw InputError("error: verify: " + optimum_json.string() + " does not exist; run the map stage first");
@@ -103,7 +142,8 @@ class VerifyStage : public Stage {
       while (p < xs.size() && xs[p] != x) ++p;
       if (p == xs.size()) {
         xs.push_back(x), targets.emplace_back();
-        points.push_back({"v" + std::to_string(p), point_scene(ctx, model, x), o["inputs"]});
+        const std::string id = (round ? "round" + std::to_string(round) + "_v" : "v") + std::to_string(p);
+        points.push_back({id, point_scene(ctx, model, x), o["inputs"]});
       }
       targets[p].push_back(o["rq_max"].get<double>());
     }
@@ -112,7 +152,7 @@ class VerifyStage : public Stage {
           "error: verify: " + optimum_json.string() +
           " proposes no operating point (no grid point meets any rq_max); raise rq_max or widen the design");
 
-    const auto simulated = run_and_measure(ctx, points, runs_, settings_);
+    const auto simulated = run_and_measure(ctx, points, runs_, round * runs_, settings_);
     const auto known_var = mean_replicate_variance(ctx.run.metrics_csv(), model);
     nlohmann::json out_points = nlohmann::json::array();
     bool all = true;
@@ -154,17 +194,51 @@ class VerifyStage : public Stage {
                    verified ? "verified: the simulation falls inside the predicted interval"
                             : "NOT verified: the simulation falls outside the predicted interval");
     }
-    write_atomic(
-        ctx.run.map_dir() / "verified.json",
-        nlohmann::json({{"model", plugin}, {"replicates", runs_}, {"points", out_points}, {"verified", all}}).dump(2) +
-            "\n");
+    nlohmann::json doc = {{"model", plugin}, {"replicates", runs_}, {"points", out_points}, {"verified", all}};
+    if (rounds_ > 1) doc["round"] = round + 1, doc["rounds"] = rounds_, doc["earlier_rounds"] = history_;
+    write_atomic(ctx.run.map_dir() / "verified.json", doc.dump(2) + "\n");
+    history_.push_back({{"round", round + 1}, {"points", out_points}, {"verified", all}});
     // the figure shows the first target's optimum: point v0 when that one was found
     const auto &optima = optimum.value("optima", nlohmann::json::array());
     if (style_.on && !optima.empty() && optima[0].value("found", false))
       redraw_verified_map(ctx, model, optimum, out_points[0]["verified"].get<bool>() ? 1 : 0);
+    return {points, all};
   }
 
- private:
+  // The round's runs as cases of the manifest's verify_cases (replacing any of the same id), each its
+  // own replicate of its point, so that the loop's characterise measures them.
+  void add_runs_to_manifest(StageContext &ctx, const std::vector<VerifyPoint> &points, std::size_t round) const {
+    ctx.run.update_manifest([&](nlohmann::json &m) {
+      nlohmann::json kept = nlohmann::json::array();
+      for (const auto &c : m.value("verify_cases", nlohmann::json::array()))
+        if (c.value("round", std::size_t(0)) != round) kept.push_back(c);
+      for (const auto &p : points)
+        for (std::size_t r = 0; r < runs_; ++r) {
+          const std::string id = "verify/" + replicate_id(p.id, r);
+          kept.push_back({{"id", id},
+                          {"dir", id},
+                          {"inputs", p.inputs},
+                          {"point", "verify/" + p.id},
+                          {"replicate", r},
+                          {"round", round},
+                          {"hash", case_hash(verify_run_scene(p, round * runs_, r))}});
+        }
+      m["verify_cases"] = kept;
+    });
+  }
+
+  // characterise (with the runs of the first `rounds` rounds), train and map again, as the workflow sets them.
+  void refit(StageContext &ctx, std::size_t rounds) const {
+    Diagnostics diag;
+    std::vector<std::pair<std::unique_ptr<Stage>, std::size_t>> stages;
+    stages.emplace_back(make_characterise_stage(rounds), *characterise_stage_);
+    stages.emplace_back(make_train_stage(), *train_stage_);
+    stages.emplace_back(make_map_stage(), *map_stage_);
+    for (auto &[stage, i] : stages) stage->validate(ctx.wf, ctx.wf.stages[i], &ctx.scene, ctx.registry, diag);
+    diag.throw_if_any();
+    for (auto &[stage, i] : stages) stage->run(ctx);
+  }
+
   // The workflow's scene at x: each model input is a scene key (U, omega, ...), set as a design does.
   static Scene point_scene(StageContext &ctx, const analysis::ModelFile &model, const Eigen::VectorXd &x) {
     Scene scene = ctx.scene;
@@ -185,7 +259,21 @@ class VerifyStage : public Stage {
     return s;
   }
 
-  std::size_t runs_ = default_runs;
+  static std::size_t read_rounds(const YAML::Node &node, const std::string &file, Diagnostics &diag) {
+    if (!node) return 1;
+    const sm_param_v1 p = {"rounds", SM_INTEGER,
+                           "-",      1,
+                           10,       1,
+                           nullptr,  0,
+                           nullptr,  "verify, and while not verified refit with the runs and verify the new optimum"};
+    const auto before = diag.errors().size();
+    const auto v = validate_value(p, node, file, "verify.rounds", diag);
+    return diag.errors().size() != before || !v.is_number() ? 1 : v.get<std::size_t>();
+  }
+
+  std::size_t runs_ = default_runs, rounds_ = 1;
+  std::optional<std::size_t> characterise_stage_, train_stage_, map_stage_;  // indices in the workflow
+  nlohmann::json history_;                                                   // the earlier rounds' points
   CharacteriseSettings settings_;
   figures::Style style_;
 };
