@@ -224,6 +224,9 @@ int main(int argc, char **argv) {
       const double cpu = process_cpu_seconds() - cpu0;
       const auto &after = sim.counters();
       const double particle_steps = after.particle_steps - before.particle_steps;
+      const auto &pa = after.profile, &pb = before.profile;
+      const double parts[] = {pa.integrate - pb.integrate, pa.neighbours - pb.neighbours, pa.pairs - pb.pairs,
+                              pa.planes - pb.planes,       pa.geometries - pb.geometries, pa.other - pb.other};
       Timing t{particle_steps / wall,
                double(sim.list_entries()) / double(std::max<std::size_t>(1, sim.size())),
                after.list_builds - before.list_builds,
@@ -237,6 +240,13 @@ int main(int argc, char **argv) {
           r + 1, opt.threads[k], opt.threads[k] > 1 ? "s" : " ", t.particle_steps_per_second,
           1e9 / t.particle_steps_per_second, 1e9 * cpu / particle_steps, static_cast<unsigned long long>(t.list_builds),
           t.neighbours, t.particles_end);
+      double timed = 0;
+      for (double x : parts) timed += x;
+      std::printf(
+          "    where the step's time went: integrate %.1f %%, neighbour list %.1f %%, pairs %.1f %%, plane walls "
+          "%.1f %%, spreader %.1f %%, other %.1f %%\n",
+          100 * parts[0] / timed, 100 * parts[1] / timed, 100 * parts[2] / timed, 100 * parts[3] / timed,
+          100 * parts[4] / timed, 100 * parts[5] / timed);
       std::fflush(stdout);
       timings[k].push_back(std::move(t));
     }

@@ -560,7 +560,15 @@ void Simulation<Real>::subset_forces(const ContactLaw &law, const Particles<Real
   else law.ops->walls_f32(law.self, &sv, &sw);
 }
 
-template <class Real> void Simulation<Real>::compute_forces() {
+template <class Real> void Simulation<Real>::compute_forces(StepProfile *prof) {
+  using clock = std::chrono::steady_clock;
+  auto t = clock::now();
+  auto lap = [&](double StepProfile::*part) {
+    if (!prof) return;
+    const auto now = clock::now();
+    prof->*part += std::chrono::duration<double>(now - t).count();
+    t = now;
+  };
   auto &p = state_.particles;
   const std::size_t n = p.size();
   if (!forces_zeroed_) {
@@ -580,6 +588,7 @@ template <class Real> void Simulation<Real>::compute_forces() {
   const PairList<Real> l = state_.list.view();
   if constexpr (std::is_same_v<Real, double>) state_.pair_law.ops->pairs_f64(state_.pair_law.self, &v, &l);
   else state_.pair_law.ops->pairs_f32(state_.pair_law.self, &v, &l);
+  lap(&StepProfile::pairs);  // with the zeroing of the forces above
 
   for (auto &pl : state_.planes) {
     if (!pl.wall.active) continue;
@@ -602,12 +611,14 @@ template <class Real> void Simulation<Real>::compute_forces() {
       for (std::uint32_t i : pl.near)
         if (p.mobile[i] == 0 && pl.slot.overlap[i] > 0) wake(i);
   }
+  lap(&StepProfile::planes);
   for (auto &ge : state_.geometries) {
     // searched again when the geometry may have moved by a skin (the search does not change results)
     if (!ge.near_valid || ge.speed * (state_.time - ge.near_since) > state_.skin) find_near_geometry(ge);
     geometry_forces(ge, v);
     ge.slot.touched = true;
   }
+  lap(&StepProfile::geometries);
 }
 
 // The particles that may touch a geometry until it is searched again: those a sphere 3 skins larger
@@ -854,6 +865,9 @@ template <class Real> void Simulation<Real>::host_changes() {
 }
 
 template <class Real> void Simulation<Real>::step() {
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  auto &prof = state_.counters.profile;
   if (backend_) {
     if (!step_resolved_) resolve_step();
     if (host_changed_) {
@@ -862,9 +876,10 @@ template <class Real> void Simulation<Real>::step() {
     }
     device_ahead_ = true;
     backend_->step(state_);
+    prof.other += std::chrono::duration<double>(clock::now() - t0).count();
     return;
   }
-  const auto t0 = std::chrono::steady_clock::now();
+  const double timed_before = prof.total();
   const auto &p = state_.particles;
   const SerialScope serial(p.size() < state_.settings.parallel_min_particles);
   prepare();
@@ -872,28 +887,37 @@ template <class Real> void Simulation<Real>::step() {
     ~EqualSharesAfter() { this_thread_team_object().set_cuts(nullptr, 0, 0); }
   } equal_shares_after;  // outside a step, nothing is split by this simulation's particles
   share_like_pairs();
+  auto since = [](clock::time_point t) { return std::chrono::duration<double>(clock::now() - t).count(); };
+  auto t = clock::now();
   const Real dt = Real(state_.dt), half = Real(0.5 * state_.dt);
   const bool rebuild = kick_and_drift(half, dt);
   for (auto &pl : state_.planes)
     for (int a = 0; a < 3; ++a) pl.wall.point[a] += state_.dt * pl.wall.velocity[a];
   state_.time += state_.dt;
   ++state_.step;
+  prof.integrate += since(t);
   if (rebuild || !state_.list_valid) {
+    t = clock::now();
     rebuild_list();
     share_like_pairs();
+    prof.neighbours += since(t);
   }
-  compute_forces();
+  compute_forces(&prof);
   // The second half kick waits for the next step's first, which runs it in the same pass
   // (kick_and_drift), unless the state is read or changed before (sync_host). Sleeping reads the
   // velocities now; immobile (fixed) particles need the kick that reads mobility.
+  t = clock::now();
   if (state_.settings.sleep || fixed_ > 0) kick_and_check(half);
   else second_kick_pending_ = true;
+  prof.integrate += since(t);
   if (state_.step % state_.settings.check_every == 0) check_overlaps();
   ++state_.counters.steps;
   state_.counters.particle_steps += double(p.size());
   state_.counters.integrated_particle_steps += double(p.size() - asleep_ - fixed_);
   if (state_.settings.sleep) update_sleep();
-  state_.counters.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double wall = since(t0);
+  prof.other += wall - (prof.total() - timed_before);  // set-up, checks, sleeping
+  state_.counters.wall_seconds += wall;
 }
 
 template <class Real> void Simulation<Real>::run_steps(std::uint64_t n) {

@@ -137,7 +137,7 @@ template <class Real = double> class Simulation {
   void share_like_pairs();  // the step's loops split the particles as the pair loop does
   void find_near_geometry(GeometrySlot<Real> &geometry);
   void geometry_forces(GeometrySlot<Real> &geometry, const Particles<Real> &view);
-  void compute_forces();
+  void compute_forces(StepProfile *profile = nullptr);  // profile: its parts timed into it
   void plane_contacts(PlaneSlot<Real> &plane);
   void dense_plane_forces(PlaneSlot<Real> &plane, const Particles<Real> &view);
   void subset_forces(const ContactLaw &law, const Particles<Real> &sv, WallContacts<Real> &sw);

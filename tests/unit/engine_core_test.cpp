@@ -331,3 +331,18 @@ TEST(EngineHistory, SurvivesListRebuilds) {
   EXPECT_EQ(kept.counters().list_builds, 1u);
   EXPECT_TRUE(same_state(rebuilt, kept));
 }
+
+// The step profile accounts for every second of step(): its parts are not negative, add up to the
+// counters' wall time (to rounding), and a scene of touching spheres spends time on pairs and lists.
+TEST(EngineCounters, TheStepProfileAddsUpToTheWallTime) {
+  Scene<double> scene;
+  auto sim = scene.make();
+  sim.run_steps(600);
+  const auto &c = sim.counters();
+  const auto &p = c.profile;
+  for (double part : {p.integrate, p.neighbours, p.pairs, p.planes, p.geometries}) EXPECT_GE(part, 0.0);
+  EXPECT_GT(p.pairs, 0.0);
+  EXPECT_GT(p.neighbours, 0.0);
+  EXPECT_GT(p.other, -1e-9 * c.wall_seconds);  // the rest, by difference: rounding only
+  EXPECT_NEAR(p.total(), c.wall_seconds, 1e-9 * c.wall_seconds);
+}
