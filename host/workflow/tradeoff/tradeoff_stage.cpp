@@ -56,6 +56,9 @@ class TradeoffStage : public Stage {
       if (k != "heaps" && k != "fidelities" && k != "render")
         diag.error(Location::of(file, kv.first), "tradeoff." + k, "unknown key", "known: heaps, fidelities, render");
     }
+    if (scene && scene->layers.count > 1)
+      diag.error(entry.where, "tradeoff", "measures one pass; a multi-layer scene is not supported yet",
+                 "spread one layer in the tradeoff's workflow (scene.layers.count: 1)");
     if (cfg["heaps"]) {
       try {
         heaps_ = cfg["heaps"].as<int>();
