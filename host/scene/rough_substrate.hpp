@@ -10,11 +10,11 @@
 // middle of a longer one, so its edges are no smoother than its middle. Random: spreadmap::Random
 // (the same numbers on every platform for one seed).
 //
-// No scene uses it yet: a `substrate.roughness` key also needs the fixed spheres carried through
-// state.vtp (which has no `fixed` column, so a multi-layer bed would set them free), the spreader's
-// gap and the heap measured from the rough surface's mean plane, the CPU backend (the CUDA one refuses
-// fixed particles), and the layer metrics told which spheres are substrate (their input has only a
-// flat substrate_z).
+// No scene uses it yet: a `substrate.roughness` key also needs the spreader's gap and the heap
+// measured from the rough surface's mean plane, the CPU backend (the CUDA one refuses fixed
+// particles), and the layer metrics told which spheres are substrate (their input has only a flat
+// substrate_z, and a sphere resting on the layer's peaks would count as loose). state.vtp keeps the
+// spheres fixed (its "fixed" column).
 #pragma once
 #include <cstddef>
 #include <cstdint>
