@@ -44,6 +44,18 @@ void scalar_array(std::string &out, const char *name, const std::vector<double> 
   out += "        </DataArray>\n";
 }
 
+// Integers, ten a line: `value(i)` of point i.
+template <class Value>
+void integer_array(std::string &out, const char *type, const char *name, std::size_t n, Value &&value) {
+  out += fmt::format("        <DataArray type=\"{}\" Name=\"{}\" format=\"ascii\">\n", type, name);
+  for (std::size_t i = 0; i < n; ++i) {
+    out += i % 10 == 0 ? "          " : " ";
+    out += std::to_string(value(i));
+    if (i % 10 == 9 || i + 1 == n) out += '\n';
+  }
+  out += "        </DataArray>\n";
+}
+
 }  // namespace
 
 void write_vtp(const std::filesystem::path &path, const ParticleSet &s, double time) {
@@ -70,13 +82,9 @@ void write_vtp(const std::filesystem::path &path, const ParticleSet &s, double t
   vector_array(out, "omega", s.wx, s.wy, s.wz, n);
   scalar_array(out, "radius", s.radius, n);
   if (!s.mass.empty()) scalar_array(out, "mass", s.mass, n);
-  out += "        <DataArray type=\"Int64\" Name=\"id\" format=\"ascii\">\n";
-  for (std::size_t i = 0; i < n; ++i) {
-    out += i % 10 == 0 ? "          " : " ";
-    out += std::to_string(s.id.empty() ? i : s.id[i]);
-    if (i % 10 == 9 || i + 1 == n) out += '\n';
-  }
-  out += "        </DataArray>\n";
+  integer_array(out, "Int64", "id", n, [&](std::size_t i) { return s.id.empty() ? i : std::size_t(s.id[i]); });
+  // only where some particle is fixed: other files stay as they were
+  if (!s.fixed.empty()) integer_array(out, "UInt8", "fixed", n, [&](std::size_t i) { return int(s.fixed[i]); });
   out += "      </PointData>\n";
   // One vertex cell per point, so that ParaView draws the particles without a glyph filter.
   out += "      <Verts>\n        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
@@ -179,6 +187,12 @@ VtpContent read_vtp(const std::filesystem::path &path) {
   const auto ids = t.numbers("id", n);
   s.id.resize(n);
   for (std::size_t i = 0; i < n; ++i) s.id[i] = static_cast<std::uint32_t>(ids[i]);
+  if (t.text.find("Name=\"fixed\"") != std::string::npos) {
+    for (double v : t.numbers("fixed", n)) {
+      if (v != 0 && v != 1) t.fail("DataArray 'fixed' holds a value other than 0 and 1");
+      s.fixed.push_back(static_cast<std::uint8_t>(v));
+    }
+  }
   s.validate(path.string());
   return c;
 }

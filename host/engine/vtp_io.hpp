@@ -1,6 +1,7 @@
 // Particle snapshots as VTK XML PolyData (.vtp, ASCII, readable by ParaView and VTK) and series
 // files (.pvd). Points are the centres; point data "velocity", "omega" (3 components), "radius",
-// "mass", "id"; field data "TIME". Written atomically (write_atomic: a failed write throws
+// "mass", "id", and "fixed" (0/1, only when the set has the column: fixed particles never move);
+// field data "TIME". Written atomically (write_atomic: a failed write throws
 // RunFailure naming the file). read_vtp reads back files written by write_vtp (a small parser for
 // this layout, not a general VTK reader).
 #pragma once

@@ -80,6 +80,34 @@ TEST(EngineVtp, RoundTripIsExact) {
     EXPECT_NE(text.find(needle), std::string::npos) << needle;
 }
 
+// Fixed particles stay fixed through a file (a multi-layer bed is read back from its state.vtp); a
+// set without the column writes none and reads back without one.
+TEST(EngineVtp, FixedColumnRoundTrips) {
+  ParticleSet s;
+  s.x = {0.1, 0.2, 0.3};
+  s.y = s.z = {0.1, 0.1, 0.1};
+  s.radius = {1e-4, 1e-4, 1e-4};
+  s.fixed = {1, 0, 1};
+  const fs::path path = temp_dir() / "fixed.vtp";
+  write_vtp(path, s, 0);
+  EXPECT_EQ(read_vtp(path).particles.fixed, s.fixed);
+  s.fixed.clear();
+  write_vtp(path, s, 0);
+  EXPECT_EQ(read_text(path).find("fixed"), std::string::npos);
+  EXPECT_TRUE(read_vtp(path).particles.fixed.empty());
+  std::string text;
+  {
+    s.fixed = {1, 0, 1};
+    write_vtp(path, s, 0);
+    text = read_text(path);
+    const auto at = text.find("1 0 1", text.find("Name=\"fixed\""));
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, 5, "1 2 1");
+  }
+  write_text(path, text);
+  EXPECT_THROW(read_vtp(path), SetupError);
+}
+
 TEST(EngineVtp, RejectsAForeignFile) {
   const fs::path path = write_text(temp_dir() / "foreign.vtp", "<VTKFile type=\"ImageData\"></VTKFile>");
   EXPECT_THROW(read_vtp(path), SetupError);

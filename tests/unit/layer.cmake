@@ -19,3 +19,8 @@ if(TARGET spreadmap_core)
     target_compile_definitions(test_unit_layer_vti PRIVATE SPREADMAP_TEST_WITH_VTK=1)
   endif()
 endif()
+
+# The effective and deposited thickness of the layers of a multi-layer bed (the characterise stage's).
+if(TARGET spreadmap_workflow)
+  spreadmap_test(unit layer_thickness SOURCES ${CMAKE_CURRENT_LIST_DIR}/layer_thickness_test.cpp LIBS spreadmap_workflow)
+endif()

@@ -35,7 +35,7 @@ TEST_F(LayerPlugin, DescribesItself) {
   EXPECT_EQ(plugin_->abi, SPREADMAP_PLUGIN_ABI);
   EXPECT_STREQ(plugin_->kind, "metrics");
   EXPECT_STREQ(plugin_->name, "layer");
-  ASSERT_EQ(plugin_->n_params, 3u);
+  ASSERT_EQ(plugin_->n_params, 6u);
   EXPECT_STREQ(plugin_->params[0].name, "grid");
   EXPECT_STREQ(plugin_->params[0].unit, "m");
   EXPECT_EQ(plugin_->params[0].def, 0.0);
@@ -45,6 +45,53 @@ TEST_F(LayerPlugin, DescribesItself) {
   EXPECT_STREQ(plugin_->params[2].name, "segregation");
   EXPECT_EQ(plugin_->params[2].type, SM_BOOLEAN);
   EXPECT_EQ(plugin_->params[2].def, 0.0);  // opt-in: metrics.csv of existing workflows keeps its columns
+  EXPECT_STREQ(plugin_->params[3].name, "depth_profile");
+  EXPECT_EQ(plugin_->params[3].type, SM_BOOLEAN);
+  EXPECT_EQ(plugin_->params[3].def, 0.0);  // opt-in, as segregation
+  EXPECT_STREQ(plugin_->params[4].name, "depth_slice");
+  EXPECT_STREQ(plugin_->params[4].unit, "m");
+  EXPECT_EQ(plugin_->params[4].def, 50e-6);
+  EXPECT_STREQ(plugin_->params[5].name, "top_thickness");
+  EXPECT_STREQ(plugin_->params[5].unit, "m");
+}
+
+// Packing against depth appears only when asked for: its scalars with units, the profile beside the
+// metrics. One 100 um sphere on the substrate in 25 um slices: the slice [0, 25 um] holds the cap of
+// height 25 um, pi h^2 (3 r - h) / 3 with h = 25 um, r = 50 um.
+TEST_F(LayerPlugin, ReportsPackingAgainstDepthOnlyWhenAsked) {
+  const double r = 50e-6, x = 0.5e-3, y = 0.5e-3, z = r;
+  sm_layer_input_v1 in{};
+  in.n = 1;
+  in.x = &x, in.y = &y, in.z = &z, in.r = &r;
+  in.region[1] = in.region[3] = 1e-3;
+  in.speed = in.gap = std::nan("");
+  for (const bool asked : {false, true}) {
+    sm_error err{};
+    void *self = plugin_->create(asked ? R"({"grid": 0, "exclude_loose": true, "depth_profile": true,
+                                             "depth_slice": 25e-6, "top_thickness": 0})"
+                                       : R"({"grid": 0, "exclude_loose": true})",
+                                 &err);
+    ASSERT_NE(self, nullptr) << err.text;
+    const char *text = ops_->evaluate(self, &in, &err);
+    ASSERT_NE(text, nullptr) << err.text;
+    const auto j = nlohmann::json::parse(text);
+    for (const char *name : {"packing_top", "packing_bulk", "top_thickness"}) {
+      EXPECT_EQ(j["metrics"].contains(name), asked) << name;
+      EXPECT_EQ(j["units"].contains(name), asked) << name;
+    }
+    EXPECT_EQ(j.contains("profiles"), asked);
+    if (asked) {
+      const auto &p = j["profiles"];
+      ASSERT_EQ(p["z"].size(), 4u);  // 100 um of sphere in 25 um slices
+      EXPECT_EQ(p["units"]["z"], "m");
+      EXPECT_EQ(p["units"]["packing"], "-");
+      const double h = 25e-6, cap = std::numbers::pi * h * h * (3 * r - h) / 3;
+      EXPECT_NEAR(p["packing"][0].get<double>(), cap / (1e-6 * h), 1e-12);
+      EXPECT_NEAR(p["z"][0].get<double>(), h / 2, 1e-18);
+      EXPECT_EQ(j["units"]["top_thickness"], "m");
+    }
+    plugin_->destroy(self);
+  }
 }
 
 // The segregation metrics appear, with their units, only when asked for.

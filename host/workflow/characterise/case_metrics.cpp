@@ -62,6 +62,7 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
                         {"units", r.units},
                         {"warnings", r.warnings}};
   if (layer) doc["layer"] = layer;
+  if (!r.profiles.is_null()) doc["profiles"] = r.profiles;  // metrics.json only: metrics.csv holds scalars
   write_atomic(dir / "metrics.json", doc.dump(2) + "\n");
   if (settings.render) {
     const auto m = r.metrics;

@@ -2,21 +2,26 @@
 // case folder), gathered in metrics.csv with one row per case and the unit of every column in
 // metrics.units.json. A multi-layer case (scene.layers) has one row per layer, evaluated in its
 // layer_K folder, and metrics.csv then a `layer` column after `case`. A case whose state and
-// settings did not change is not evaluated again. The verify loop's characterise (`verify: {rounds:
-// N}`) also measures the verify runs the loop added to the manifest (`verify_cases`) of the rounds
-// before it, so that the model is refitted with them.
+// settings did not change is not evaluated again. Multi-layer rows also get effective_thickness and
+// deposited_thickness, from consecutive layers (bed_thickness.hpp). The verify loop's characterise
+// (`verify: {rounds: N}`) also measures the verify runs the loop added to the manifest
+// (`verify_cases`) of the rounds before it, so that the model is refitted with them.
 // Replicated points (simulate: replicates) get one row per point in metrics.csv (each metric's
 // mean, its _std over the replicates, and `replicates`); every run's own row is kept in
 // metrics_replicates.csv.
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "analysis/replicates.hpp"
 #include "analysis/table.hpp"
 #include "core/error.hpp"
 #include "core/files.hpp"
+#include "workflow/characterise/bed_thickness.hpp"
 #include "workflow/characterise/case_metrics.hpp"
+#include "workflow/simulate/case_setup.hpp"
+#include "workflow/simulate/layer_feed.hpp"
 #include "workflow/stage.hpp"
 
 namespace spreadmap {
@@ -55,7 +60,9 @@ class CharacteriseStage : public Stage {
         continue;
       }
       // one row per layer of a multi-layer case (layer 0: a single pass, as its own folder holds it)
-      const int layers = static_cast<int>(read_scene_file(dir / "scene.json").layers.count);
+      const Scene scene = read_scene_file(dir / "scene.json");
+      const int layers = static_cast<int>(scene.layers.count);
+      const std::size_t first = results.size();
       for (int layer = layers > 1 ? 1 : 0; layer <= (layers > 1 ? layers : 0); ++layer) {
         const std::string key =
             stable_hash(settings + c.value("hash", "") + (layer ? "/layer " + std::to_string(layer) : ""));
@@ -66,6 +73,7 @@ class CharacteriseStage : public Stage {
         if (c.contains("point")) doc["point"] = c["point"], doc["replicate"] = c["replicate"];
         results.push_back(doc);
       }
+      if (layers > 1) add_layer_thicknesses(ctx, scene, dir, results.begin() + static_cast<std::ptrdiff_t>(first));
     }
     if (missing)
       spdlog::warn("characterise: {} of {} cases have no finished state; run the simulate stage to complete them",
@@ -76,6 +84,31 @@ class CharacteriseStage : public Stage {
   }
 
  private:
+  // effective_thickness and deposited_thickness of each layer of one multi-layer case (bed_thickness.hpp),
+  // from its layer rows starting at `rows`; metrics.csv only (each layer's metrics.json stays its own).
+  static void add_layer_thicknesses(StageContext &ctx, const Scene &scene, const fs::path &dir,
+                                    std::vector<nlohmann::json>::iterator rows) {
+    const auto number = [](const nlohmann::json &m, const char *key) {
+      const auto &v = m.value(key, nlohmann::json());
+      return v.is_number() ? v.get<double>() : std::nan("");
+    };
+    const int layers = static_cast<int>(scene.layers.count);
+    std::vector<LayerBed> beds;
+    for (int k = 1; k <= layers; ++k) {
+      const auto &m = rows[k - 1]["metrics"];
+      beds.push_back({describe_spreader(layer_scene(scene, k), ctx.registry, dir / "scene.json").gap,
+                      number(m, "mean_height"), number(m, "solid_thickness")});
+    }
+    const auto thickness = layer_thicknesses(beds);
+    for (int k = 1; k <= layers; ++k) {
+      auto &row = rows[k - 1];
+      const auto value = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
+      row["metrics"]["effective_thickness"] = value(thickness[k - 1].effective);
+      row["metrics"]["deposited_thickness"] = value(thickness[k - 1].deposited);
+      row["units"]["effective_thickness"] = row["units"]["deposited_thickness"] = "m";
+    }
+  }
+
   static bool case_done(const fs::path &dir, const std::string &hash) {
     std::error_code ec;
     if (!fs::exists(dir / "case.json", ec) || !fs::exists(dir / "state.vtp", ec)) return false;

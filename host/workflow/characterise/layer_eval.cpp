@@ -39,6 +39,7 @@ LayerResult characterise_layer(PluginRegistry &registry, const LayerRequest &rq,
   out.metrics = doc.at("metrics");
   out.units = doc.at("units");
   for (const auto &w : doc.value("warnings", nlohmann::json::array())) out.warnings.push_back(w.get<std::string>());
+  if (doc.contains("profiles")) out.profiles = doc["profiles"];
   if (ops->heightmap) {
     const double *h = ops->heightmap(inst.get(), &out.nx, &out.ny, &out.x0, &out.y0, &out.cell);
     if (h) out.height.assign(h, h + std::size_t(out.nx) * out.ny);
@@ -129,7 +130,13 @@ const std::vector<std::string> &standard_metric_order() {
                                                  "d50_number_ratio",
                                                  "fines_diameter",
                                                  "layer_fines",
-                                                 "feed_fines"};
+                                                 "feed_fines",
+                                                 "layer_height",
+                                                 "effective_thickness",
+                                                 "deposited_thickness",
+                                                 "packing_top",
+                                                 "packing_bulk",
+                                                 "top_thickness"};
   return order;
 }
 

@@ -36,6 +36,7 @@ struct LayerResult {
   nlohmann::json metrics;  // name -> SI value or null
   nlohmann::json units;    // name -> SI unit
   std::vector<std::string> warnings;
+  nlohmann::json profiles;  // the plugin's "profiles" (e.g. packing against depth); null when it has none
   std::uint32_t nx = 0, ny = 0;
   double x0 = 0, y0 = 0, cell = 0;
   std::vector<double> height;  // row-major iy * nx + ix [m] above the substrate

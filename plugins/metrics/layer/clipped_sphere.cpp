@@ -10,13 +10,6 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 
-// Unit sphere volume with x >= t (a spherical cap of height 1 - t).
-double cap_volume(double t) {
-  if (t >= 1) return 0;
-  if (t <= -1) return 4 * pi / 3;
-  return pi * (1 - t) * (1 - t) * (2 + t) / 3;
-}
-
 // Antiderivative in x of the slice area {y >= b} of the unit sphere, for a, b >= 0 and x in [0, c],
 // c = sqrt(1 - b^2). Derivation: integrate (1 - x^2) acos(b / sqrt(1 - x^2)) by parts; the remaining
 // terms are the standard integrals of 1/q, x^2/q, q and 1/((1 - x^2) q), q = sqrt(c^2 - x^2).
@@ -31,10 +24,16 @@ double slice_antiderivative(double x, double b, double c) {
 
 }  // namespace
 
+double sm::layer::unit_sphere_cap_volume(double t) {
+  if (t >= 1) return 0;
+  if (t <= -1) return 4 * pi / 3;
+  return pi * (1 - t) * (1 - t) * (2 + t) / 3;
+}
+
 double sm::layer::unit_sphere_quadrant_volume(double a, double b) {
   // Reflections bring both planes to the positive side: {y >= b} = all - {y < b} = cap - {y >= -b}.
-  if (b < 0) return cap_volume(a) - unit_sphere_quadrant_volume(a, -b);
-  if (a < 0) return cap_volume(b) - unit_sphere_quadrant_volume(-a, b);
+  if (b < 0) return unit_sphere_cap_volume(a) - unit_sphere_quadrant_volume(a, -b);
+  if (a < 0) return unit_sphere_cap_volume(b) - unit_sphere_quadrant_volume(-a, b);
   if (a * a + b * b >= 1) return 0;
   const double c = std::sqrt(1 - b * b);  // largest x at which the plane y = b still cuts the sphere
   return slice_antiderivative(c, b, c) - slice_antiderivative(a, b, c);

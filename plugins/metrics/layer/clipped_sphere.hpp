@@ -8,6 +8,9 @@
 
 namespace spreadmap::layer {
 
+// Unit sphere: volume of {x >= t}, a spherical cap of height 1 - t (any t).
+double unit_sphere_cap_volume(double t);
+
 // Unit sphere: volume of {x >= a, y >= b}. Any a, b (negative and beyond +-1 included).
 double unit_sphere_quadrant_volume(double a, double b);
 

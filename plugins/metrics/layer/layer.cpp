@@ -5,7 +5,8 @@
 // height x U, the study's spread rate per unit roller width), solid thickness with spheres clipped
 // exactly by the region, packing fractions, coverage and the largest bare patch, all in SI with their
 // units. Spheres resting on nothing (in flight) are left out by default (resting.hpp). With
-// `segregation: true` it also compares the layer's size distribution with the feed's (segregation.hpp).
+// `segregation: true` it also compares the layer's size distribution with the feed's (segregation.hpp);
+// with `depth_profile: true` it reports packing against depth (depth_profile.hpp).
 // The algorithm lives in layer_metrics / heightmap / segregation (plain C++, tested directly); this
 // file is only the C boundary. The plugin writes no file: the host asks for the last map through heightmap().
 #include <spreadmap/metric.hpp>
@@ -13,6 +14,7 @@
 
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
 
 #include "layer_metrics.hpp"
@@ -32,18 +34,31 @@ class Layer {
                   "also the layer's sizes against the feed (every sphere): layer_/feed_ d10, d50, d90 by volume [m], "
                   "their d*_ratio = layer/feed [-], d50 by number (*_number), fines_diameter = feed D10 [m], "
                   "layer_fines/feed_fines = volume share below it [-]"),
+      sm::boolean("depth_profile", false,
+                  "also packing against depth: solid fraction in horizontal slices from the substrate up (the "
+                  "profile in metrics.json), packing_top = the top_thickness below the mean surface, packing_bulk "
+                  "= the bed below that [-]"),
+      sm::number("depth_slice", "m", 1e-9, 1.0, 50e-6, "slice thickness of the depth profile"),
+      sm::number("top_thickness", "m", 0.0, 1.0, 0.0,
+                 "thickness below the mean surface that packing_top covers; 0 = two mean sphere diameters "
+                 "(a multi-layer bed: give the layer thickness)"),
   };
   static Layer bind(const sm::Values &v) {
     Layer layer;
     layer.cell_ = v["grid"];
     layer.exclude_loose_ = v.boolean("exclude_loose");
     layer.segregation_ = v.has("segregation") && v.boolean("segregation");  // absent (callers before 1.1): off
+    if (v.has("depth_profile") && v.boolean("depth_profile")) {             // absent (callers before 1.2): off
+      layer.depth_.emplace();
+      if (v.has("depth_slice")) layer.depth_->slice = v["depth_slice"];
+      if (v.has("top_thickness")) layer.depth_->top_thickness = v["top_thickness"];
+    }
     if (layer.cell_ < 0) throw sm::ParamError("grid = " + std::to_string(layer.cell_) + " m must be >= 0 (0 = d/5)");
     return layer;
   }
 
   const char *evaluate(const sm_layer_input_v1 &in) {
-    last_ = sm::layer::characterise_layer(in, cell_, exclude_loose_, segregation_);
+    last_ = sm::layer::characterise_layer(in, cell_, exclude_loose_, segregation_, depth_ ? &*depth_ : nullptr);
     json_ = sm::layer::metrics_json(last_);
     return json_.c_str();
   }
@@ -53,6 +68,7 @@ class Layer {
   double cell_ = 0;
   bool exclude_loose_ = true;
   bool segregation_ = false;
+  std::optional<sm::layer::DepthSettings> depth_;
   sm::layer::LayerResult last_;
   std::string json_;  // owned here: valid until the next evaluate() or destroy()
 };
@@ -85,7 +101,7 @@ const sm_metrics_ops_v1 ops_table = {&evaluate, &heightmap};
 
 }  // namespace
 
-SPREADMAP_PLUGIN("metrics", Layer, "layer", "1.1.0",
+SPREADMAP_PLUGIN("metrics", Layer, "layer", "1.2.0",
                  "height map, R_q, V_s, solid thickness, packing, coverage and bare patches of a spread layer; "
-                 "optionally its size distribution against the feed",
+                 "optionally its size distribution against the feed and its packing against depth",
                  &ops_table)

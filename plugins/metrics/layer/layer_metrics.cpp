@@ -130,7 +130,7 @@ std::size_t sm::layer::largest_bare_patch_points(const std::vector<std::uint8_t>
 }
 
 LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose,
-                                          bool with_segregation) {
+                                          bool with_segregation, const DepthSettings *depth_settings) {
   check_input(in);
   LayerResult out;
   SphereArrays spheres{static_cast<std::size_t>(in.n), in.x, in.y, in.z, in.r};
@@ -186,6 +186,8 @@ LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double ce
     out.segregation =
         segregation(SizeSample(diameters_in_region(spheres, in.region, strip)), SizeSample(std::move(feed)));
   }
+  if (depth_settings)
+    out.depth = depth_profile(spheres, in.region, strip, in.substrate_z, m.mean_height, *depth_settings);
 
   if (solid == 0 && n_covered == 0)
     out.warnings.push_back(
@@ -225,9 +227,19 @@ std::string sm::layer::metrics_json(const LayerResult &r) {
     put("layer_fines", number_or_null(g->layer_fines), "-");
     put("feed_fines", number_or_null(g->feed_fines), "-");
   }
+  nlohmann::ordered_json profiles;
+  if (const auto &p = r.depth) {
+    put("packing_top", number_or_null(p->packing_top), "-");
+    put("packing_bulk", number_or_null(p->packing_bulk), "-");
+    put("top_thickness", number_or_null(p->top_thickness), "m");
+    profiles["z"] = p->z;
+    profiles["packing"] = p->packing;
+    profiles["units"] = {{"z", "m"}, {"packing", "-"}};
+  }
   nlohmann::ordered_json doc;
   doc["metrics"] = std::move(metrics);
   doc["units"] = std::move(units);
   doc["warnings"] = r.warnings;
+  if (!profiles.is_null()) doc["profiles"] = std::move(profiles);
   return doc.dump();
 }

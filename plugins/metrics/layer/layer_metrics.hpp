@@ -10,7 +10,8 @@
 // rest on nothing (exclude_loose) [-]. An undefined value is NaN here and null in JSON,
 // never a silent number: vs without a speed, packing_fraction when the map's volume is 0,
 // packing_fraction_gap without a gap. With `segregation`, also the layer's size distribution against
-// the feed (segregation.hpp).
+// the feed (segregation.hpp). With a DepthSettings, also packing against depth (depth_profile.hpp):
+// packing_top, packing_bulk [-], top_thickness [m], and the profile under "profiles".
 #pragma once
 #include <spreadmap/metric.hpp>
 
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "depth_profile.hpp"
 #include "heightmap.hpp"
 #include "segregation.hpp"
 
@@ -38,18 +40,21 @@ struct LayerResult {
   std::vector<std::uint8_t> covered;  // 1 where a sphere covers the grid point
   LayerMetrics metrics;
   std::optional<SegregationMetrics> segregation;  // when asked for
+  std::optional<DepthProfile> depth;              // when asked for
   std::vector<std::string> warnings;              // sentences for the user; the host logs them
 };
 
 // The whole characterisation. `cell` is the plugin's `grid` parameter: 0 means mean diameter / 5.
 // exclude_loose: only the spheres resting on the substrate (directly or through touching spheres,
 // resting.hpp) make the layer; loose_spheres counts the others. with_segregation: also the layer's
-// size distribution against the feed, every sphere of `in`. Throws std::invalid_argument for
+// size distribution against the feed, every sphere of `in`. depth: also packing against depth, of
+// the spheres that make the layer. Throws std::invalid_argument for
 // unusable input (empty region, non-finite sphere data).
 LayerResult characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose = false,
-                               bool with_segregation = false);
+                               bool with_segregation = false, const DepthSettings *depth = nullptr);
 
-// {"metrics": {...}, "units": {...}, "warnings": [...]}; NaN metrics are written as null.
+// {"metrics": {...}, "units": {...}, "warnings": [...]}; NaN metrics are written as null. With a depth
+// profile also "profiles": {"z": [...], "packing": [...], "units": {"z": "m", "packing": "-"}}.
 std::string metrics_json(const LayerResult &result);
 
 // Pieces, usable on their own (tests, other tools).

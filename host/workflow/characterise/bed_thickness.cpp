@@ -1,0 +1,16 @@
+#include "workflow/characterise/bed_thickness.hpp"
+
+namespace spreadmap {
+
+std::vector<LayerThickness> layer_thicknesses(const std::vector<LayerBed> &layers) {
+  std::vector<LayerThickness> out;
+  double below_height = 0, below_solid = 0;  // the bare plate under layer 1
+  for (const LayerBed &b : layers) {
+    out.push_back({b.spreader_edge - below_height, b.solid_thickness - below_solid});
+    below_height = b.mean_height;
+    below_solid = b.solid_thickness;
+  }
+  return out;
+}
+
+}  // namespace spreadmap
