@@ -70,6 +70,7 @@ def svg_plot(path, title, xlabel, series, ylabel, xlog=False):
         out.append(f'<text x="{L-6}" y="{Y(y)+4}" text-anchor="end">{y:.3g}</text>')
         out.append(f'<line x1="{L-3}" y1="{Y(y)}" x2="{L}" y2="{Y(y)}" stroke="black"/>')
     ticks = sorted({p[0] for p in pts})
+    ticks = ticks[:: math.ceil(len(ticks) / 8)]  # at most 8 labels
     for t in ticks:
         out.append(f'<text x="{X(t)}" y="{H-B+16}" text-anchor="middle">{t:g}</text>')
     for i, (name, s) in enumerate(series):
@@ -114,8 +115,10 @@ def layers_study(run, out):
     by_case = {}
     for r in rows(run):
         by_case.setdefault(float(r["contact.surface_energy"]), []).append(r)
-    keys = [("rq", 1e6, "R_q [um]"), ("coverage", 1, "coverage"), ("packing_fraction", 1, "packing"),
-            ("mean_height", 1e6, "mean height [um]"), ("layer_height", 1e6, "layer height [um]")]
+    keys = [("rq", 1e6, "R_q [um]"), ("coverage", 1, "coverage"), ("packing_top", 1, "packing, top 250 um"),
+            ("packing_bulk", 1, "packing below it"), ("mean_height", 1e6, "mean height [um]"),
+            ("layer_height", 1e6, "layer height [um]"), ("effective_thickness", 1e6, "effective thickness [um]"),
+            ("deposited_thickness", 1e6, "deposited solid [um]"), ("largest_bare_patch", 1e6, "largest bare patch [mm^2]")]
     print("| Bo | layer | " + " | ".join(k[2] for k in keys) + " |")
     print("|" + "---|" * (2 + len(keys)))
     series = {k: [] for k, _, _ in keys}
@@ -125,8 +128,23 @@ def layers_study(run, out):
         for k, s, _ in keys:
             series[k].append((f"Bo = {bond(g):.3g}",
                               [(int(r["layer"]), num(r, k, s), float("nan")) for r in by_case[g]]))
-    for k, _, label in keys[:3]:
+    for k, _, label in keys[:4] + keys[6:8]:
         svg_plot(Path(out) / f"layers_{k}.svg", f"{label} after each layer", "layer", series[k], label)
+
+
+def depth_profiles(run, out):
+    """Packing against height of the bed after layers 1, 3 and 5 of case c000 (metrics.json profiles)."""
+    import json
+    series = []
+    for k in (1, 3, 5):
+        f = Path(run) / "cases" / "c000" / f"layer_{k}" / "metrics.json"
+        if not f.exists():
+            continue
+        p = json.loads(f.read_text())["profiles"]
+        series.append((f"after layer {k}", [(z * 1e6, phi, float("nan")) for z, phi in zip(p["z"], p["packing"])]))
+    if series:
+        svg_plot(Path(out) / "layers_depth_profile.svg", "solid fraction of 50 um slices against height",
+                 "slice centre above the plate [um]", series, "solid fraction [-]")
 
 
 if __name__ == "__main__":
@@ -137,3 +155,4 @@ if __name__ == "__main__":
     print()
     if (Path(layers_run) / "metrics.csv").exists():
         layers_study(layers_run, out)
+        depth_profiles(layers_run, out)
