@@ -98,6 +98,17 @@ YAML::Node json_to_yaml(const nlohmann::json &value) {
   return node;
 }
 
+std::size_t read_whole_number(const YAML::Node &value, const std::string &file, const std::string &key_path,
+                              std::size_t lo, std::size_t hi, std::size_t fallback, Diagnostics &diag) {
+  if (!value) return fallback;
+  const std::string name = key_path.substr(key_path.rfind('.') + 1);
+  const sm_param_v1 p = {name.c_str(),     SM_INTEGER, "-", double(lo), double(hi),
+                         double(fallback), nullptr,    0,   nullptr,    ""};
+  const auto before = diag.errors().size();
+  const auto v = validate_value(p, value, file, key_path, diag);
+  return diag.errors().size() != before || !v.is_number() ? fallback : v.get<std::size_t>();
+}
+
 nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, const std::string &file,
                               const std::string &key_path, Diagnostics &diag) {
   const Location at = Location::of(file, value);

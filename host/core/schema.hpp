@@ -37,6 +37,11 @@ void fill_defaults(const SchemaView &schema, nlohmann::json &values, const Locat
 nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, const std::string &file,
                               const std::string &key_path, Diagnostics &diag);
 
+// A whole number in [lo, hi] at `value` (key `key_path` in `file`): `fallback` when the key is absent
+// or its value is refused (the error recorded).
+std::size_t read_whole_number(const YAML::Node &value, const std::string &file, const std::string &key_path,
+                              std::size_t lo, std::size_t hi, std::size_t fallback, Diagnostics &diag);
+
 // Plain JSON from YAML (tables): numbers become numbers, the rest strings, maps and lists as such.
 nlohmann::json yaml_to_json(const YAML::Node &node);
 // The other way, for parameters given in code (engine/plugin_law.hpp): numbers written so that they

@@ -121,11 +121,8 @@ Design parse_design(const YAML::Node &node, const std::string &file, const std::
   }
   static const std::set<std::string> reserved = {"type",    "samples", "seed",         "cases",
                                                  "initial", "budget",  "target_nrmse", "outputs"};
-  auto integer = [&](const char *key, std::size_t def, std::size_t lo, std::size_t hi) -> std::size_t {
-    if (!node[key]) return def;
-    const sm_param_v1 p = {key, SM_INTEGER, "-", double(lo), double(hi), 0, nullptr, 0, nullptr, ""};
-    auto v = validate_value(p, node[key], file, key_path + "." + key, diag);
-    return v.is_number() ? v.get<std::size_t>() : def;
+  auto integer = [&](const char *key, std::size_t def, std::size_t lo, std::size_t hi) {
+    return read_whole_number(node[key], file, key_path + "." + key, lo, hi, def, diag);
   };
   for (const auto &kv : node) {
     const std::string name = kv.first.as<std::string>();

@@ -6,13 +6,7 @@ namespace spreadmap {
 
 std::size_t read_replicates(const YAML::Node &node, const std::string &file, const std::string &key_path,
                             std::size_t fallback, Diagnostics &diag) {
-  if (!node) return fallback;
-  const sm_param_v1 p = {"replicates",     SM_INTEGER, "-", 1,       double(max_replicates),
-                         double(fallback), nullptr,    0,   nullptr, "independent heaps (seeds) per design point"};
-  const auto before = diag.errors().size();
-  const auto v = validate_value(p, node, file, key_path, diag);
-  if (diag.errors().size() != before || !v.is_number()) return fallback;
-  return v.get<std::size_t>();
+  return read_whole_number(node, file, key_path, 1, max_replicates, fallback, diag);
 }
 
 std::int64_t replicate_seed(std::int64_t scene_seed, std::size_t replicate) {

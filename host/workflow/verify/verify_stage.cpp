@@ -65,7 +65,7 @@ class VerifyStage : public Stage {
     }
     style_ = figures::read_style(entry.config["render"], true, false, file, "verify.render", diag);
     runs_ = read_replicates(entry.config["replicates"], file, "verify.replicates", default_runs, diag);
-    rounds_ = read_rounds(entry.config["rounds"], file, diag);
+    rounds_ = read_whole_number(entry.config["rounds"], file, "verify.rounds", 1, 10, 1, diag);
     const StageEntry *map = nullptr, *characterise = nullptr;
     for (std::size_t i = 0; i < wf.stages.size() && &wf.stages[i] != &entry; ++i) {
       if (wf.stages[i].kind == "map") map = &wf.stages[i], map_stage_ = i;
@@ -260,18 +260,6 @@ class VerifyStage : public Stage {
     for (std::size_t i = 0; i < model.inputs.size(); ++i)
       s += (i ? ", " : "") + model.inputs[i].name + " = " + display(x(Eigen::Index(i)), model.inputs[i].unit);
     return s;
-  }
-
-  static std::size_t read_rounds(const YAML::Node &node, const std::string &file, Diagnostics &diag) {
-    if (!node) return 1;
-    const sm_param_v1 p = {"rounds", SM_INTEGER,
-                           "-",      1,
-                           10,       1,
-                           nullptr,  0,
-                           nullptr,  "verify, and while not verified refit with the runs and verify the new optimum"};
-    const auto before = diag.errors().size();
-    const auto v = validate_value(p, node, file, "verify.rounds", diag);
-    return diag.errors().size() != before || !v.is_number() ? 1 : v.get<std::size_t>();
   }
 
   std::size_t runs_ = default_runs, rounds_ = 1;
