@@ -15,7 +15,7 @@
 //          [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT]
 //          [--backend cpu|cuda]
 //   --backend cuda: the GPU mode, every step on the device (cuda/resident_stepper.hpp); the thread
-//   counts then only set the host's OpenMP threads. With --workflow workflows/paper.yaml it times the
+//   counts then only set the host's OpenMP threads. With --workflow workflows/paper_full.yaml it times the
 //   study's 235,000-sphere scene (its heap is settled first, on the same backend).
 //   --heap: a settled heap (state .vtp, e.g. runs/peer_liggghts/heaps/heap_*.vtp); without it one is
 //   settled first (~0.1 s of simulated time, a few minutes) and written to --save-heap if given.

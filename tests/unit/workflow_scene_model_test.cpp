@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <fstream>
 
 #include "core/error.hpp"
@@ -53,12 +54,30 @@ std::string refusal(const std::string &text) {
 }  // namespace
 
 TEST(SceneModel, EveryPresetsResolvedSceneRoundTripsToTheSameJsonText) {
-  for (const std::string preset : {"quick", "standard", "paper"}) {
+  for (const std::string preset : {"quick", "standard", "paper", "paper_full"}) {
     const nlohmann::json json = sm::to_json(preset_scene(preset));
     const sm::Scene again = sm::scene_from_json(json, "test");
     EXPECT_EQ(sm::to_json(again).dump(2), json.dump(2)) << preset;
     EXPECT_EQ(again.preset, preset);
   }
+}
+
+// The paper preset is a periodic strip of paper_full's scene (docs/paper-scale.md): the same plate,
+// travel, spreader and contact, its heap the full roller's spheres per width (to one sphere).
+TEST(SceneModel, ThePaperPresetIsAStripOfTheFullWidthWithItsSpheresPerWidth) {
+  const sm::Scene strip = preset_scene("paper"), full = preset_scene("paper_full");
+  EXPECT_TRUE(strip.domain.periodic_y);
+  EXPECT_FALSE(full.domain.periodic_y);
+  EXPECT_DOUBLE_EQ(strip.domain.width, 2e-3);
+  EXPECT_DOUBLE_EQ(full.domain.width, 70e-3);
+  const double per_width = double(full.powder.count) * strip.domain.width / full.domain.width;
+  EXPECT_LE(std::abs(double(strip.powder.count) - per_width), 1.0) << per_width;
+  nlohmann::json a = sm::to_json(strip), b = sm::to_json(full);
+  for (auto *j : {&a, &b}) {
+    (*j)["domain"].erase("width"), (*j)["domain"].erase("periodic_y"), (*j)["powder"].erase("count");
+    j->erase("preset");
+  }
+  EXPECT_EQ(a.dump(2), b.dump(2));
 }
 
 TEST(SceneModel, TypedValuesAreTheResolvedOnesInSI) {

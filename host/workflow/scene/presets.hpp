@@ -7,5 +7,6 @@ namespace spreadmap::presets {
 extern const char *const quick;
 extern const char *const standard;
 extern const char *const paper;
+extern const char *const paper_full;
 
 }  // namespace spreadmap::presets

@@ -69,7 +69,7 @@ struct Layers {
 enum class Precision { float64, float32 };
 
 struct Scene {
-  std::string preset = "quick";  // quick | standard | paper
+  std::string preset = "quick";  // quick | standard | paper | paper_full
   Precision precision = Precision::float64;
   std::string backend = "auto";  // auto | cpu | cuda
   std::int64_t threads = 0;      // 0 = all cores

@@ -75,7 +75,7 @@ constexpr sm_param_v1 layers_params[] = {
 };
 
 constexpr sm_param_v1 engine_params[] = {
-    sm::enumeration("preset", "quick|standard|paper", "quick", "fidelity preset the other keys override"),
+    sm::enumeration("preset", "quick|standard|paper|paper_full", "quick", "fidelity preset the other keys override"),
     sm::enumeration("precision", "double|float", "double", "floating-point precision of the particle state"),
     sm::enumeration("backend", "auto|cpu|cuda", "auto", "where the DEM runs (auto: a GPU when present)"),
     sm::integer("threads", 0, 1024, 0, "OpenMP threads; 0 = all cores"),
@@ -219,6 +219,7 @@ void check_powder(const Scene &scene, const YAML::Node &powder, const std::strin
 const char *preset_text(const std::string &preset) {
   if (preset == "standard") return presets::standard;
   if (preset == "paper") return presets::paper;
+  if (preset == "paper_full") return presets::paper_full;
   return presets::quick;
 }
 

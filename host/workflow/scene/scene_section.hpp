@@ -1,4 +1,4 @@
-// The spreading scene: a preset (quick | standard | paper) overridden key by key by the workflow,
+// The spreading scene: a preset (quick | standard | paper | paper_full) overridden key by key by the workflow,
 // validated against the host's own schemas and the schemas of the plugins it names, resolved to
 // one JSON object in SI. A case of the design is that scene with some keys replaced.
 //
