@@ -30,6 +30,33 @@ std::vector<std::size_t> space_filling_start(const Eigen::MatrixXd &c) {
   return out;
 }
 
+std::vector<double> loo_nrmse_percent(const Model &fitted, const Eigen::MatrixXd &y,
+                                      const std::vector<Eigen::Index> &rows) {
+  const nlohmann::json info = fitted.fit_info();
+  if (!info.contains("loo_mean"))
+    throw std::invalid_argument("the model reports no leave-one-out predictions (loo_mean): use surrogate/gp");
+  std::vector<Eigen::Index> picked = rows;
+  if (picked.empty())
+    for (Eigen::Index k = 0; k < y.rows(); ++k) picked.push_back(k);
+  std::vector<double> out;
+  for (Eigen::Index c = 0; c < y.cols(); ++c) {
+    Eigen::VectorXd truth(Eigen::Index(picked.size())), loo(truth.size());
+    for (std::size_t k = 0; k < picked.size(); ++k)
+      truth[Eigen::Index(k)] = y(picked[k], c),
+      loo[Eigen::Index(k)] = info["loo_mean"].at(std::size_t(picked[k])).at(std::size_t(c)).get<double>();
+    out.push_back(nrmse_percent(truth, loo));
+  }
+  return out;
+}
+
+bool target_held(std::size_t &in_a_row, const std::vector<double> &loo_nrmse, double target, std::size_t fits,
+                 std::size_t confirm) {
+  const bool good =
+      std::all_of(loo_nrmse.begin(), loo_nrmse.end(), [&](double e) { return std::isfinite(e) && e <= target; });
+  in_a_row = good && fits > 1 ? in_a_row + 1 : 0;
+  return in_a_row >= std::max<std::size_t>(1, confirm);
+}
+
 AdaptiveResult adaptive_design(const Eigen::MatrixXd &cand, const std::function<std::unique_ptr<Model>()> &make_model,
                                const std::function<Eigen::VectorXd(const Eigen::VectorXd &)> &evaluate,
                                const AdaptiveOptions &opt) {
@@ -62,23 +89,9 @@ AdaptiveResult adaptive_design(const Eigen::MatrixXd &cand, const std::function<
     if (!model->has_std())
       throw std::invalid_argument("adaptive design: the model gives no standard deviation (use surrogate/gp)");
     model->fit(r.x, r.y);
-    const nlohmann::json info = model->fit_info();
-    if (!info.contains("loo_mean"))
-      throw std::invalid_argument("adaptive design: the model reports no loo_mean (use surrogate/gp)");
-    Eigen::MatrixXd loo(n, r.y.cols());
-    for (Eigen::Index k = 0; k < n; ++k)
-      for (Eigen::Index c = 0; c < r.y.cols(); ++c)
-        loo(k, c) = info["loo_mean"].at(std::size_t(k)).at(std::size_t(c)).get<double>();
-    AdaptiveStep step{std::size_t(n), {}};
-    bool good = true;
-    for (Eigen::Index c = 0; c < r.y.cols(); ++c) {
-      const double e = nrmse_percent(r.y.col(c), loo.col(c));
-      step.loo_nrmse.push_back(e);
-      good = good && std::isfinite(e) && e <= opt.target_loo_nrmse;
-    }
+    AdaptiveStep step{std::size_t(n), loo_nrmse_percent(*model, r.y)};
     r.history.push_back(step);
-    good_in_a_row = good && r.history.size() > 1 ? good_in_a_row + 1 : 0;
-    if (good_in_a_row >= std::max<std::size_t>(1, opt.confirm))
+    if (target_held(good_in_a_row, step.loo_nrmse, opt.target_loo_nrmse, r.history.size(), opt.confirm))
       return r.reached_target = true, r.stop_reason = "target", r;
     if (r.chosen.size() >= opt.budget) return r.stop_reason = "budget", r;
     if (r.chosen.size() >= std::size_t(cand.rows())) return r.stop_reason = "candidates exhausted", r;

@@ -43,6 +43,16 @@ struct AdaptiveResult {
 // snapped to its nearest candidate (distances in box-normalised units), duplicates dropped.
 std::vector<std::size_t> space_filling_start(const Eigen::MatrixXd &candidates);
 
+// The leave-one-out NRMSE [%] per output over `rows` of y (all rows when empty), from the fitted
+// model's fit_info() "loo_mean"; throws std::invalid_argument when the model reports none.
+std::vector<double> loo_nrmse_percent(const Model &fitted, const Eigen::MatrixXd &y,
+                                      const std::vector<Eigen::Index> &rows = {});
+
+// Whether the stopping target holds: every output's LOO NRMSE of this fit is at most `target` [%],
+// and so for `confirm` consecutive fits (the first fit never counts); in_a_row carries the count.
+bool target_held(std::size_t &in_a_row, const std::vector<double> &loo_nrmse, double target, std::size_t fits,
+                 std::size_t confirm);
+
 // candidates: allowed settings (rows x inputs), e.g. the 5 x 9 design grid or a finer one.
 // make_model: a fresh unfitted model (surrogate/gp) each step. evaluate: runs one case, returns its
 // outputs (the host connects it to a simulation).

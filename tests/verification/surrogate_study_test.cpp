@@ -1,6 +1,6 @@
 // The surrogate plugins end to end, loaded from their .so files like the host does: the study's
 // 45-point fit (35/10 split) and its Table-4 scores, model files that predict bit for bit again,
-// and the adaptive design against the full-factorial map.
+// and the adaptive designs (one fidelity, and cheap beside expensive) against the full-factorial map.
 #include <dlfcn.h>
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 #include "host/analysis/adaptive.hpp"
 #include "host/analysis/grid.hpp"
 #include "host/analysis/model_file.hpp"
+#include "host/analysis/multifidelity.hpp"
 #include "host/analysis/plugin_model.hpp"
 #include "host/analysis/report.hpp"
 #include "host/analysis/scores.hpp"
@@ -163,6 +164,75 @@ TEST(SurrogateStudy, AdaptiveDesignMatchesTheFullFactorialWithHalfTheCases) {
   EXPECT_LE(evaluations, 22u);
   EXPECT_LE(e_adaptive, e_full);
   EXPECT_EQ(r.history.back().cases, evaluations);
+  if (r.reached_target) {
+    for (double e : r.history.back().loo_nrmse) EXPECT_LE(e, o.target_loo_nrmse);
+  }
+}
+
+TEST(SurrogateStudy, CornersAndCentreOfTheStudysGridStartTheExpensiveCases) {
+  const Eigen::MatrixXd x = sm::test::study_grid();
+  std::vector<Eigen::RowVector2d> got;
+  for (auto i : sa::corners_and_centre(x, sa::space_filling_start(x))) got.push_back(x.row(Eigen::Index(i)));
+  const std::vector<Eigen::RowVector2d> want = {{0.04, -20}, {0.1, -20}, {0.07, 0}, {0.04, 20}, {0.1, 20}};
+  ASSERT_EQ(got.size(), want.size());
+  for (const auto &w : want)
+    EXPECT_TRUE(std::any_of(got.begin(), got.end(), [&](const auto &g) { return (g - w).norm() < 1e-12; })) << w;
+}
+
+// A cheap fidelity that is the expensive one with a bias smooth in both inputs (V_s 2-4 % high, rising
+// with U; R_q 3 % low, tilted with omega), like a narrow strip against the full width: with at most 15
+// expensive cases the model over both fidelities predicts the expensive surface as well as the GP
+// fitted to the 45 expensive cases of the full factorial, and better than the same number of
+// expensive cases chosen alone.
+TEST(SurrogateStudy, MultiFidelityMatchesTheFullFactorialWithFifteenExpensiveCases) {
+  const sm_plugin_v1 *gp = plugin("gp");
+  const auto make = [&] { return std::unique_ptr<sa::Model>(sa::PluginModel::create(gp, default_params(gp))); };
+  const Eigen::MatrixXd dense = sa::grid_points({{"U", 0.04, 0.1, 41}, {"omega", -20, 20, 41}}), truth = ripple(dense);
+  Eigen::MatrixXd dense_expensive(dense.rows(), 3);
+  dense_expensive << dense, Eigen::VectorXd::Ones(dense.rows());
+  const auto dense_error = [&](const sa::Model &m, const Eigen::MatrixXd &at) {
+    const Eigen::MatrixXd p = m.predict(at).mean;
+    return std::max(sa::nrmse_percent(truth.col(0), p.col(0)), sa::nrmse_percent(truth.col(1), p.col(1)));
+  };
+  const Eigen::MatrixXd xf = sm::test::study_grid();
+  auto factorial = make();
+  factorial->fit(xf, ripple(xf));
+  const double e_full = dense_error(*factorial, dense);
+
+  std::size_t cheap = 0, expensive = 0;
+  const auto evaluate = [&](const Eigen::VectorXd &v, bool exp) {
+    const double u = v[0], w = v[1];
+    ++(exp ? expensive : cheap);
+    if (exp) return Eigen::Vector2d(ripple_vs(u, w), ripple_rq(u, w)).eval();
+    return Eigen::Vector2d(ripple_vs(u, w) * (1.03 + 0.01 * (u - 0.07) / 0.03), ripple_rq(u, w) * 0.97 + 2e-6 * w / 20)
+        .eval();
+  };
+  sa::MultiFidelityOptions o;
+  o.budget_cheap = 45, o.budget_expensive = 15, o.target_loo_nrmse = 1.0;
+  const sa::MultiFidelityResult r =
+      sa::multi_fidelity_design(sm::test::study_grid(13, 17), make, evaluate, o);  // U step 5 mm/s, omega 2.5 rad/s
+  auto both = make();
+  both->fit(r.x, r.y);
+  const double e_both = dense_error(*both, dense_expensive);
+  EXPECT_EQ(cheap, r.cheap);
+  EXPECT_EQ(expensive, r.expensive);
+  EXPECT_LE(expensive, 15u);
+  EXPECT_LE(cheap, 45u);
+  // The same expensive budget alone, on the same candidates.
+  sa::AdaptiveOptions alone;
+  alone.budget = r.expensive, alone.target_loo_nrmse = o.target_loo_nrmse;
+  const auto expensive_only = [&](const Eigen::VectorXd &v) { return evaluate(v, true); };
+  const sa::AdaptiveResult a = sa::adaptive_design(sm::test::study_grid(13, 17), make, expensive_only, alone);
+  auto single = make();
+  single->fit(a.x, a.y);
+  const double e_single = dense_error(*single, dense);
+  std::printf(
+      "full factorial (45 expensive): dense NRMSE %.3f %%; multi-fidelity (%zu cheap, %zu expensive, stop: %s): "
+      "%.3f %%; the same %zu expensive alone (stop: %s): %.3f %%\n",
+      e_full, r.cheap, r.expensive, r.stop_reason.c_str(), e_both, a.chosen.size(), a.stop_reason.c_str(), e_single);
+  EXPECT_LE(e_both, e_full);
+  EXPECT_LT(e_both, e_single);
+  EXPECT_EQ(r.history.back().expensive, r.expensive);
   if (r.reached_target) {
     for (double e : r.history.back().loo_nrmse) EXPECT_LE(e, o.target_loo_nrmse);
   }
