@@ -10,11 +10,12 @@
 // middle of a longer one, so its edges are no smoother than its middle. Random: spreadmap::Random
 // (the same numbers on every platform for one seed).
 //
-// No scene uses it yet: a `substrate.roughness` key also needs the spreader's gap and the heap
-// measured from the rough surface's mean plane, the CPU backend (the CUDA one refuses fixed
-// particles), and the layer metrics told which spheres are substrate (their input has only a flat
-// substrate_z, and a sphere resting on the layer's peaks would count as loose). state.vtp keeps the
-// spheres fixed (its "fixed" column).
+// Scenes use it through `scene.substrate.roughness` (workflow/scene/substrate_roughness.hpp): the
+// spheres are fixed particles over the plate (so the case steps on the CPU; backend: cuda is
+// refused), the first heap is fed onto them as a later layer's is fed onto the bed, the spreader's gap
+// and the layer's heights are measured from mean_top (workflow/simulate/layer_feed.hpp), state.vtp
+// keeps the spheres fixed (its "fixed" column) and the layer metrics take them as ground, not
+// layer (sm_layer_input_v1::substrate).
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -5,3 +5,6 @@ spreadmap_test(unit workflow SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_local_ex
 spreadmap_test(unit scene_model SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_scene_model_test.cpp LIBS spreadmap_workflow)
 spreadmap_test(unit powder SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_powder_test.cpp LIBS spreadmap_workflow)
 add_dependencies(test_unit_powder plugin_contact_hooke_slider plugin_contact_hertz_mindlin plugin_spreader_roller)
+# scene.substrate.roughness: the key, its refusals, and the case set-up's fixed spheres on the plate.
+spreadmap_test(unit roughness SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_roughness_test.cpp LIBS spreadmap_workflow)
+add_dependencies(test_unit_roughness plugin_contact_hooke_slider plugin_spreader_roller)

@@ -56,3 +56,6 @@ spreadmap_workflow_test(verify SOURCES ${CMAKE_CURRENT_LIST_DIR}/verify_test.cpp
 if(TARGET spreadmap_render)
   target_compile_definitions(test_workflow_verify PRIVATE SPREADMAP_TEST_FIGURES=1)
 endif()
+# A heap spread onto a rough substrate (scene.substrate.roughness), through the binary.
+spreadmap_workflow_test(rough_substrate SOURCES ${CMAKE_CURRENT_LIST_DIR}/rough_substrate_test.cpp TIMEOUT 300)
+target_link_libraries(test_workflow_rough_substrate PRIVATE spreadmap_workflow)

@@ -14,6 +14,9 @@ typedef struct sm_layer_input_v1 {
   double periodic_y[2];         // y_lo, y_hi of a periodic strip; equal values = not periodic
   double speed;                 // spreader speed U [m/s] for V_s; NaN when unknown
   double gap;                   // spreader gap [m] for packing over the gap; NaN when unknown
+  // 1: sphere i belongs to the substrate (a rough substrate's fixed spheres): ground the powder may
+  // rest on, never part of the layer. NULL: every sphere is powder (ABI 8).
+  const uint8_t *substrate;
 } sm_layer_input_v1;
 
 typedef struct sm_metrics_ops_v1 {

@@ -2,11 +2,14 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+
 #include "core/files.hpp"
 #include "core/heightmap_vti.hpp"
 #include "core/schema.hpp"
 #include "core/units.hpp"
 #include "workflow/figures/stage_figures.hpp"
+#include "workflow/scene/substrate_roughness.hpp"
 #include "workflow/simulate/case_setup.hpp"
 #include "workflow/simulate/case_runner.hpp"
 #include "workflow/simulate/layer_feed.hpp"
@@ -36,7 +39,9 @@ void read_bounds(const YAML::Node &n, const std::string &file, const std::string
 // passes, heights from the plate (z = 0), the gap the raised one (gap + drop), so packing and solid
 // thickness stay consistent. layer_height = mean height - the platform's drop: the powder's mean top
 // above the lowered platform's nominal place, as the spreader sees it (layer 1: mean height).
-// Layer 0 is a single pass, read from the case folder itself.
+// Layer 0 is a single pass, read from the case folder itself. On a rough substrate its mean plane
+// takes the plate's place: heights and the gap are measured from it, and its spheres (fixed in the
+// state) are ground, not layer.
 nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &settings, const fs::path &case_dir,
                         const std::string &id, const std::string &key, int layer) {
   const Scene scene = read_scene_file(case_dir / "scene.json");
@@ -45,8 +50,11 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
   LayerRequest rq = settings.request;
   rq.region = settings.region;
   if (scene.domain.periodic_y) rq.periodic_y = std::make_pair(0.0, scene.domain.width);
-  const Scene spread_by = layer ? layer_scene(scene, layer) : scene;  // its gap raised by the drop
+  // the spreader as it spread: its gap raised by the drop and by a rough substrate's mean plane
+  const Scene spread_by = layer_scene(scene, std::max(layer, 1));
   take_spreader(rq, describe_spreader(spread_by, registry, case_dir / "scene.json"));
+  rq.substrate_z = substrate_level(scene);  // 0 on the flat plate
+  rq.gap -= rq.substrate_z;
   LayerResult r = characterise_layer(registry, rq, particles);
   if (layer && r.metrics.value("mean_height", nlohmann::json()).is_number()) {
     r.metrics["layer_height"] = r.metrics["mean_height"].get<double>() - platform_drop(scene, layer);

@@ -20,6 +20,7 @@
 #include "core/files.hpp"
 #include "workflow/characterise/bed_thickness.hpp"
 #include "workflow/characterise/case_metrics.hpp"
+#include "workflow/scene/substrate_roughness.hpp"
 #include "workflow/simulate/case_setup.hpp"
 #include "workflow/simulate/layer_feed.hpp"
 #include "workflow/stage.hpp"
@@ -94,9 +95,10 @@ class CharacteriseStage : public Stage {
     };
     const int layers = static_cast<int>(scene.layers.count);
     std::vector<LayerBed> beds;
+    const double level = substrate_level(scene);  // heights are measured from it (0: the flat plate)
     for (int k = 1; k <= layers; ++k) {
       const auto &m = rows[k - 1]["metrics"];
-      beds.push_back({describe_spreader(layer_scene(scene, k), ctx.registry, dir / "scene.json").gap,
+      beds.push_back({describe_spreader(layer_scene(scene, k), ctx.registry, dir / "scene.json").gap - level,
                       number(m, "mean_height"), number(m, "solid_thickness")});
     }
     const auto thickness = layer_thicknesses(beds);

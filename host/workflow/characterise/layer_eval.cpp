@@ -29,6 +29,7 @@ LayerResult characterise_layer(PluginRegistry &registry, const LayerRequest &rq,
   in.periodic_y[1] = rq.periodic_y ? rq.periodic_y->second : 0.0;
   in.speed = rq.speed;
   in.gap = rq.gap;
+  in.substrate = p.fixed.empty() ? nullptr : p.fixed.data();  // fixed spheres: a rough substrate, ground
 
   sm_error err{};
   const char *text = ops->evaluate(inst.get(), &in, &err);

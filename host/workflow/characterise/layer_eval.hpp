@@ -42,6 +42,8 @@ struct LayerResult {
   std::vector<double> height;  // row-major iy * nx + ix [m] above the substrate
 };
 
+// The fixed spheres of `p` (its `fixed` column: a rough substrate's) are handed to the plugin as
+// substrate, ground rather than layer.
 LayerResult characterise_layer(PluginRegistry &registry, const LayerRequest &request, const engine::ParticleSet &p);
 
 // A particle state: spreadmap's .vtp, or a CSV with x, y, z, radius columns [m].

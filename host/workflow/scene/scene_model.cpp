@@ -81,6 +81,14 @@ void fields(L &l, F &&f) {
   f("thickness", l.thickness);
 }
 
+template <class R, class F>
+requires std::same_as<std::remove_const_t<R>, Roughness>
+void fields(R &r, F &&f) {
+  f("rq", r.rq);
+  f("correlation_length", r.correlation_length);
+  f("sphere_diameter", r.sphere_diameter);
+}
+
 struct Writer {
   json &out;
   template <class T> void operator()(const char *key, const T &value) { out[key] = value; }
@@ -172,6 +180,7 @@ json to_json(const Scene &s) {
   out["time"] = written(s.time);
   out["contact"] = {{"use", s.contact.use}, {"params", s.contact.params}};
   out["substrate"] = {{"law", s.substrate.law}};
+  if (s.substrate.roughness) out["substrate"]["roughness"] = written(*s.substrate.roughness);  // flat: absent
   out["spreader"] = {{"use", s.spreader.use}, {"params", s.spreader.params}, {"law", s.spreader.law}};
   if (s.layers.count > 1) out["layers"] = written(s.layers);  // absent for one layer: hashes unchanged
   return out;
@@ -190,6 +199,7 @@ Scene scene_from_json(const json &in, const std::string &source) {
   contact.no_other_keys();
   Reader substrate = top.section("substrate");
   s.substrate.law = substrate.object("law");
+  if (substrate.has("roughness")) s.substrate.roughness = read_section<Roughness>(substrate, "roughness");
   substrate.no_other_keys();
   Reader spreader = top.section("spreader");
   spreader("use", s.spreader.use);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 namespace spreadmap {
@@ -53,9 +54,21 @@ struct SpreaderChoice : PluginChoice {
   nlohmann::json law = nlohmann::json::object();
 };
 
-// The contact law between the particles and the substrate.
+// A rough substrate (scene.substrate.roughness): a layer of fixed spheres over the plate whose tops
+// follow a Gaussian height field (scene/rough_substrate.hpp; the case set-up in
+// workflow/simulate/layer_feed.hpp).
+struct Roughness {
+  double rq = 0;                  // m, R_q of the spheres' tops
+  double correlation_length = 0;  // m, lag at which the field's autocorrelation falls to 1/e
+  double sphere_diameter = 0;     // m; 0 = the powder's D50 by volume (after coarse graining)
+};
+
+// The contact law between the particles and the substrate plane, and the substrate's roughness:
+// absent (the default) for the flat plate, and then out of the scene's JSON form, so the hashes of
+// flat scenes stand.
 struct Substrate {
   nlohmann::json law = nlohmann::json::object();
+  std::optional<Roughness> roughness;
 };
 
 // Spreading layer upon layer: after each pass the platform drops by `thickness`, a new heap of the

@@ -12,6 +12,7 @@
 #include "workflow/scene/powder_sizes.hpp"
 #include "workflow/scene/presets.hpp"
 #include "workflow/scene/size_table.hpp"
+#include "workflow/scene/substrate_roughness.hpp"
 
 namespace spreadmap {
 namespace sm = spreadmap;
@@ -72,6 +73,16 @@ constexpr sm_param_v1 time_params[] = {
 constexpr sm_param_v1 layers_params[] = {
     sm::integer("count", 1, 50, 1, "layers spread one upon the other; 1 = one pass onto the plate"),
     sm::number("thickness", "m", 1e-7, 0.1, 50e-6, "layer thickness: the platform's drop before each further pass"),
+};
+
+constexpr sm_param_v1 roughness_params[] = {
+    sm::required_number("rq", "m", 0, 0.01,
+                        "R_q of the substrate: root-mean-square height of its spheres' tops about their mean plane"),
+    sm::required_number("correlation_length", "m", 1e-9, 1,
+                        "correlation length xi: the lag at which the tops' autocorrelation falls to 1/e (at least 2 "
+                        "sphere diameters)"),
+    sm::number("sphere_diameter", "m", 0, 0.1, 0,
+               "diameter (and spacing) of the substrate's fixed spheres; 0 = the powder's D50 by volume"),
 };
 
 constexpr sm_param_v1 engine_params[] = {
@@ -282,13 +293,18 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
     // substrate: law keys only
     auto sub =
         validate_params(schema, known_only(p["substrate"], schema), "<preset>", "scene.substrate", diag, {}, false);
-    if (user["substrate"]) {
-      auto mine = validate_params(schema, user["substrate"], file, "scene.substrate", diag, {}, false);
+    const YAML::Node user_substrate = user["substrate"];
+    if (user_substrate) {
+      auto mine = validate_params(schema, user_substrate, file, "scene.substrate", diag, {"roughness"}, false);
       for (auto &[k, v] : mine.items()) sub[k] = v;
     }
     nlohmann::json sub_law = pp;
     for (auto &[k, v] : sub.items()) sub_law[k] = v;
     scene["substrate"] = {{"law", sub_law}};
+    if (user_substrate && user_substrate.IsMap() && user_substrate["roughness"])  // absent: the flat plate
+      scene["substrate"]["roughness"] =
+          validate_params({roughness_params, std::size(roughness_params)}, user_substrate["roughness"], file,
+                          "scene.substrate.roughness", diag);
     if (geo) {
       // spreader section: geometry keys go to the geometry, law keys to the particle-spreader law
       const auto gschema = SchemaView::of(*geo->descriptor);
@@ -324,6 +340,7 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
   }
   check_powder(*typed, powder, file, registry, diag);
   if (diag.empty()) check_layers(*typed, user, file, registry, diag);
+  if (diag.empty()) check_roughness(*typed, user, file, registry, diag);
   return typed;
 }
 

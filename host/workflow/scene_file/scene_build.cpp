@@ -32,7 +32,8 @@ engine::Settings settings_of(const SceneFile &s) {
 
 // With backend cuda (or auto on a machine with a GPU) the simulation steps on the GPU: the kernels
 // of its pair law, of each plane's law (in the order the planes were added) and of each spreader
-// with its law. Cylinders have no GPU kernels: such a scene steps on the CPU.
+// with its law. Cylinders have no GPU kernels and fixed particles step on the CPU only: such a scene
+// steps on the CPU (backend auto).
 template <class Real>
 void attach_backend(engine::Simulation<Real> &sim, const SceneFile &s, const SceneRun<Real> &run,
                     const std::vector<const PluginInstance *> &plane_laws,
@@ -42,6 +43,10 @@ void attach_backend(engine::Simulation<Real> &sim, const SceneFile &s, const Sce
   if (s.backend == "cpu" || cuda::choose_backend(s.backend, message) != cuda::Backend::cuda) return;
   if (!run.cylinders.empty()) {
     spdlog::warn("{}: cylinder walls step on the CPU only; the scene runs on the CPU", s.file.string());
+    return;
+  }
+  if (sim.fixed_count() > 0 && s.backend == "auto") {  // an explicit cuda is refused by set_backend
+    spdlog::info("{}: fixed particles step on the CPU only; the scene runs on the CPU", s.file.string());
     return;
   }
   cuda::ResidentLaws laws;

@@ -4,6 +4,7 @@
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "core/stop.hpp"
+#include "workflow/scene/substrate_roughness.hpp"
 #include "workflow/simulate/case_setup.hpp"
 #include "workflow/simulate/coarse_grain.hpp"
 #include "workflow/executors/local_executor.hpp"
@@ -44,7 +45,8 @@ LayerResult measure_case_layer(PluginRegistry &registry, const Scene &scene, con
   const auto spreader = describe_spreader(scene, registry, dir / "scene.json");
   lr.region = default_region(scene, spreader);
   if (scene.domain.periodic_y) lr.periodic_y = std::make_pair(0.0, scene.domain.width);
-  take_spreader(lr, spreader);
+  take_spreader(lr, spreader);  // its gap above the substrate's mean plane, as the user gave it
+  lr.substrate_z = substrate_level(coarse_grained(scene, registry));  // 0 on the flat plate
   return characterise_layer(registry, lr, read_particle_file(dir / "state.vtp"));
 }
 

@@ -20,6 +20,7 @@
 #include "engine/vtp_io.hpp"
 #include "scene/coverage.hpp"
 #include "workflow/simulate/case_setup.hpp"
+#include "workflow/scene/substrate_roughness.hpp"
 #include "workflow/simulate/layer_feed.hpp"
 
 namespace spreadmap {
@@ -207,21 +208,71 @@ bool finished(const fs::path &dir, const std::string &record_name, const std::st
   }
 }
 
+// Where a pass onto a bed starts (the rough substrate's spheres, or the layers spread before): the
+// heap fed onto the bed and settled there under the raised spreader at rest (layer_feed.hpp). When
+// the pass will resume from its checkpoint in `dir` (of this `hash`) the settling is skipped: the
+// checkpoint replaces the start.
+struct BedStart {
+  ParticleSet start;
+  std::size_t fed = 0;               // the heap's spheres fed onto the bed
+  std::size_t removed_settling = 0;  // of those, the ones that left the domain while settling
+  bool resumed = false;
+};
+
+template <class Real>
+BedStart start_on_bed(const Scene &raised, PluginRegistry &reg, const CaseRequest &req, const std::string &name,
+                      const fs::path &dir, const std::string &hash, const ParticleSet &bed, const ParticleSet &heap) {
+  const ParticleSet fed_bed = fed_onto_bed(raised, reg, req.dir / "scene.json", bed, heap);
+  BedStart out;
+  out.fed = fed_bed.size() - bed.size();
+  out.resumed = fs::exists(dir / "checkpoint.hash") && read_text(dir / "checkpoint.hash") == hash;
+  out.start = out.resumed ? fed_bed : settle_on_bed<Real>(raised, reg, name, req.dir / "scene.json", fed_bed);
+  out.removed_settling = fed_bed.size() - out.start.size();
+  return out;
+}
+
+// What case.json records of a rough substrate: its spheres, their diameter, the mean plane of their
+// tops and the R_q of the tops about it.
+nlohmann::json substrate_record(const Scene &scene, const ParticleSet &substrate) {
+  double rq = 0;
+  const double level = substrate_level(scene);
+  for (std::size_t i = 0; i < substrate.size(); ++i) rq += std::pow(substrate.z[i] + substrate.radius[i] - level, 2);
+  return {{"spheres", substrate.size()},
+          {"sphere_diameter", 2 * substrate.radius.front()},
+          {"mean_plane", level},
+          {"rq", std::sqrt(rq / double(substrate.size()))}};
+}
+
 template <class Real> nlohmann::json spread_one_layer(const CaseRequest &req, PluginRegistry &reg) {
   const auto &scene = req.scene;
+  const std::string hash = case_hash(scene);
+  const ParticleSet substrate = substrate_spheres(scene);  // empty: the flat plate
+  const Scene raised = layer_scene(scene, 1);              // `scene` on the flat plate
   std::optional<Pass> pass;
+  std::optional<BedStart> on_substrate;
   while (!pass) {
     const ParticleSet heap = settled_heap<Real>(scene, reg, req);
-    pass = spread_pass<Real>(scene, reg, heap, req.dir, req.dir / "scene.json", case_hash(scene), req.id,
-                             [&req](double f) {
+    if (substrate.size() > 0)
+      on_substrate = start_on_bed<Real>(raised, reg, req, req.id, req.dir, hash, substrate, heap);
+    pass = spread_pass<Real>(raised, reg, on_substrate ? on_substrate->start : heap, req.dir, req.dir / "scene.json",
+                             hash, req.id, [&req](double f) {
                                if (req.progress) req.progress(0.1 + 0.9 * f, "");
                              });
   }
   nlohmann::json out = pass->record;
   out["id"] = req.id;
-  out["hash"] = case_hash(scene);
+  out["hash"] = hash;
   out["status"] = "done";
   out["inputs"] = req.inputs;
+  if (on_substrate) {
+    // resumed, the settling's losses are what the checkpoint's state lacks beyond the pass's own
+    const std::size_t removed_settling = on_substrate->resumed ? on_substrate->start.size() - pass->state.size() -
+                                                                     pass->record["removed"].get<std::size_t>()
+                                                               : on_substrate->removed_settling;
+    out["substrate"] = substrate_record(scene, substrate);
+    out["particles_fed"] = on_substrate->fed;
+    out["removed_settling"] = removed_settling;
+  }
   return write_finished(req.dir, "case.json", out);
 }
 
@@ -234,7 +285,8 @@ template <class Real> nlohmann::json spread_layers(const CaseRequest &req, Plugi
   const std::string hash = case_hash(scene);
   const ParticleSet heap = settled_heap<Real>(scene, reg, req);
   nlohmann::json layers = nlohmann::json::array();
-  ParticleSet bed;
+  const ParticleSet substrate = substrate_spheres(scene);  // empty: the flat plate
+  ParticleSet bed = substrate;
   std::size_t fed = 0;
   for (int k = 1; k <= count; ++k) {
     const fs::path dir = req.dir / layer_folder(k);
@@ -256,13 +308,12 @@ template <class Real> nlohmann::json spread_layers(const CaseRequest &req, Plugi
     while (!pass) {
       ParticleSet start = heap;
       bool resumed = false;
-      if (k > 1) {
-        const ParticleSet fed_bed = fed_onto_bed(raised, reg, req.dir / "scene.json", bed, heap);
-        fed_here = fed_bed.size() - bed.size();
-        resumed = fs::exists(dir / "checkpoint.hash") && read_text(dir / "checkpoint.hash") == hash;
-        // resumed: the checkpoint replaces the start, so the settling is not run again
-        start = resumed ? fed_bed : settle_on_bed<Real>(raised, reg, name, req.dir / "scene.json", fed_bed);
-        removed_settling = fed_bed.size() - start.size();
+      if (k > 1 || bed.size() > 0) {  // onto the layers below, or onto the rough substrate
+        BedStart on_bed = start_on_bed<Real>(raised, reg, req, name, dir, hash, bed, heap);
+        start = std::move(on_bed.start);
+        fed_here = on_bed.fed;
+        removed_settling = on_bed.removed_settling;
+        resumed = on_bed.resumed;
       }
       pass = spread_pass<Real>(raised, reg, start, dir, req.dir / "scene.json", hash, name, progress);
       // resumed, the settling's losses are what the checkpoint's state lacks beyond the pass's own
@@ -303,6 +354,7 @@ template <class Real> nlohmann::json spread_layers(const CaseRequest &req, Plugi
                         {"precision", precision_name(scene.precision)},
                         {"spreader", last["spreader"]},
                         {"spreader_end", last["spreader_end"]}};
+  if (substrate.size() > 0) out["substrate"] = substrate_record(scene, substrate);
   return write_finished(req.dir, "case.json", out);
 }
 
@@ -322,6 +374,7 @@ std::string heap_hash(const Scene &scene, PluginRegistry &registry) {
                       {"contact", all["contact"]}, {"substrate", all["substrate"]},
                       {"gravity", all["gravity"]}, {"precision", all["precision"]},
                       {"time", all["time"]}};
+  s["substrate"].erase("roughness");  // the heap settles on the plate and is fed onto a rough substrate after
   for (const char *k : {"relax", "checkpoint_interval", "snapshots"}) s["time"].erase(k);
   // The spreader as the heap sees it: its law and its body at rest, as it describes itself (its
   // motion, e.g. a speed or a rotation, does not change the heap).

@@ -48,7 +48,8 @@ template <class Real>
 engine::ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::string &label,
                                 const fs::path &scene_file, const std::function<void(double)> &progress = {});
 
-// Layer k >= 2 of a multi-layer case (`scene` is layer_scene(): its spreader raised). The bed with
+// Layer k >= 2 of a multi-layer case, or the first layer on a rough substrate (`scene` is
+// layer_scene(): its spreader raised; the bed: the layers below, or the substrate's spheres). The bed with
 // the heap fed on it (layer_feed.hpp), less the heap's spheres within the insertion's clearance of
 // the raised spreader at rest. Throws InputError when a sphere of the bed touches that spreader.
 engine::ParticleSet fed_onto_bed(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file,

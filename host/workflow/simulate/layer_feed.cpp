@@ -4,6 +4,8 @@
 #include <functional>
 #include <limits>
 
+#include "workflow/scene/substrate_roughness.hpp"
+
 namespace spreadmap {
 
 using engine::ParticleSet;
@@ -12,7 +14,21 @@ double platform_drop(const Scene &scene, int layer) { return double(layer - 1) *
 
 Scene layer_scene(const Scene &scene, int layer) {
   Scene out = scene;
-  if (layer > 1) out.spreader.params["gap"] = scene.spreader.params["gap"].get<double>() + platform_drop(scene, layer);
+  const double raise = substrate_level(scene) + platform_drop(scene, layer);
+  if (raise != 0) out.spreader.params["gap"] = scene.spreader.params["gap"].get<double>() + raise;
+  return out;
+}
+
+ParticleSet substrate_spheres(const Scene &scene) {
+  const auto substrate = rough_substrate_of(scene);
+  ParticleSet out;
+  if (!substrate) return out;
+  out.x = substrate->x;
+  out.y = substrate->y;
+  out.z = substrate->z;
+  out.radius.assign(out.x.size(), substrate->radius);
+  out.fixed.assign(out.x.size(), 1);
+  for (std::size_t i = 0; i < out.x.size(); ++i) out.id.push_back(std::uint32_t(i));
   return out;
 }
 

@@ -6,6 +6,12 @@
 // The heights of layer k are measured from z = (k - 1) x thickness, the lowered platform's place
 // in the spreader's frame: layer k's mean height is the powder above the plane the spreader sees as
 // the plate of the first layer.
+//
+// A rough substrate (scene.substrate.roughness) is the bed of the first layer: its fixed spheres stand
+// on the plate (which stays below, so that fines cannot fall through), the first heap is fed onto
+// them as later heaps are fed onto the layers below, and its mean plane (substrate_level(), the mean
+// of the spheres' tops) takes the plate's place: the spreader is raised by it, and the heights are
+// measured from it.
 #pragma once
 #include <functional>
 
@@ -17,8 +23,14 @@ namespace spreadmap {
 // How far the platform has dropped before layer k (1-based) is spread [m]: (k - 1) x thickness.
 double platform_drop(const Scene &scene, int layer);
 
-// The scene of layer k: the spreader's gap raised by platform_drop(scene, k). Layer 1's is `scene`.
+// The scene of layer k: the spreader's gap raised by the substrate's mean plane (0 for the flat
+// plate, workflow/scene/substrate_roughness.hpp) and platform_drop(scene, k). Layer 1's on the flat
+// plate is `scene`.
 Scene layer_scene(const Scene &scene, int layer);
+
+// The rough substrate's spheres, fixed, numbered from 0: the bed the first heap is fed onto. Empty for
+// the flat plate. `scene` is the scene the engine runs.
+engine::ParticleSet substrate_spheres(const Scene &scene);
 
 // The bed with a new heap of the same powder on it: the heap, as settled on the plate, lifted so
 // that its lowest sphere clears the highest sphere of the bed under its footprint by `clearance`,

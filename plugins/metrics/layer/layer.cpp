@@ -4,7 +4,8 @@
 // cells over the host's sampling region and reports mean height, R_q (std. deviation of h), V_s (mean
 // height x U, the study's spread rate per unit roller width), solid thickness with spheres clipped
 // exactly by the region, packing fractions, coverage and the largest bare patch, all in SI with their
-// units. Spheres resting on nothing (in flight) are left out by default (resting.hpp). With
+// units. Spheres resting on nothing (in flight) are left out by default (resting.hpp); the spheres
+// the host flags as substrate (a rough substrate's, from 1.3) are ground, never layer. With
 // `segregation: true` it also compares the layer's size distribution with the feed's (segregation.hpp);
 // with `depth_profile: true` it reports packing against depth (depth_profile.hpp).
 // The algorithm lives in layer_metrics / heightmap / segregation (plain C++, tested directly); this
@@ -101,7 +102,7 @@ const sm_metrics_ops_v1 ops_table = {&evaluate, &heightmap};
 
 }  // namespace
 
-SPREADMAP_PLUGIN("metrics", Layer, "layer", "1.2.0",
+SPREADMAP_PLUGIN("metrics", Layer, "layer", "1.3.0",
                  "height map, R_q, V_s, solid thickness, packing, coverage and bare patches of a spread layer; "
                  "optionally its size distribution against the feed and its packing against depth",
                  &ops_table)

@@ -135,14 +135,20 @@ LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double ce
   LayerResult out;
   SphereArrays spheres{static_cast<std::size_t>(in.n), in.x, in.y, in.z, in.r};
   const PeriodicStrip strip{in.periodic_y[0], in.periodic_y[1]};
-  std::vector<double> kept[4];  // the resting spheres' columns, when the loose ones are left out
-  if (exclude_loose) {
-    const auto resting = resting_spheres(spheres, in.substrate_z, strip);
+  // A rough substrate's spheres are ground the powder rests on, never part of the layer.
+  const auto is_substrate = [&](std::size_t i) { return in.substrate && in.substrate[i]; };
+  std::size_t substrate_spheres = 0;
+  for (std::size_t i = 0; i < spheres.n; ++i) substrate_spheres += is_substrate(i);
+  std::vector<double> kept[4];  // the powder's columns, less the loose spheres when those are left out
+  if (exclude_loose || substrate_spheres > 0) {
+    const auto resting = exclude_loose
+                             ? resting_spheres(spheres, in.substrate_z, strip, resting_tolerance, in.substrate)
+                             : std::vector<std::uint8_t>(spheres.n, 1);
     for (std::size_t i = 0; i < spheres.n; ++i) {
-      if (!resting[i]) continue;
+      if (!resting[i] || is_substrate(i)) continue;
       kept[0].push_back(in.x[i]), kept[1].push_back(in.y[i]), kept[2].push_back(in.z[i]), kept[3].push_back(in.r[i]);
     }
-    out.metrics.loose_spheres = spheres.n - kept[0].size();
+    if (exclude_loose) out.metrics.loose_spheres = spheres.n - substrate_spheres - kept[0].size();
     spheres = {kept[0].size(), kept[0].data(), kept[1].data(), kept[2].data(), kept[3].data()};
     if (out.metrics.loose_spheres > 0)
       out.warnings.push_back(std::to_string(out.metrics.loose_spheres) +
@@ -181,8 +187,9 @@ LayerResult sm::layer::characterise_layer(const sm_layer_input_v1 &in, double ce
       static_cast<double>(largest_bare_patch_points(out.covered, out.grid.nx, out.grid.ny)) * cell * cell;
   m.particles_in_region = centres_in_region(spheres, in.region, strip);
   if (with_segregation) {
-    std::vector<double> feed(in.n);  // every sphere handed in, loose ones included
-    for (std::uint64_t i = 0; i < in.n; ++i) feed[i] = 2 * in.r[i];
+    std::vector<double> feed;  // every powder sphere handed in, loose ones included
+    for (std::uint64_t i = 0; i < in.n; ++i)
+      if (!is_substrate(i)) feed.push_back(2 * in.r[i]);
     out.segregation =
         segregation(SizeSample(diameters_in_region(spheres, in.region, strip)), SizeSample(std::move(feed)));
   }

@@ -45,10 +45,12 @@ struct LayerResult {
 };
 
 // The whole characterisation. `cell` is the plugin's `grid` parameter: 0 means mean diameter / 5.
-// exclude_loose: only the spheres resting on the substrate (directly or through touching spheres,
-// resting.hpp) make the layer; loose_spheres counts the others. with_segregation: also the layer's
-// size distribution against the feed, every sphere of `in`. depth: also packing against depth, of
-// the spheres that make the layer. Throws std::invalid_argument for
+// The spheres `in.substrate` flags (a rough substrate's) are ground: never part of the layer, its
+// heights, coverage, solid, packing or sizes. exclude_loose: only the powder spheres resting on the
+// ground (the plane at substrate_z or a substrate sphere, directly or through touching spheres,
+// resting.hpp) make the layer; loose_spheres counts the other powder spheres. with_segregation: also
+// the layer's size distribution against the feed, every powder sphere of `in`. depth: also packing
+// against depth, of the spheres that make the layer. Throws std::invalid_argument for
 // unusable input (empty region, non-finite sphere data).
 LayerResult characterise_layer(const sm_layer_input_v1 &in, double cell, bool exclude_loose = false,
                                bool with_segregation = false, const DepthSettings *depth = nullptr);

@@ -7,7 +7,7 @@
 namespace spreadmap::layer {
 
 std::vector<std::uint8_t> resting_spheres(const SphereArrays &s, double substrate_z, const PeriodicStrip &strip,
-                                          double tolerance) {
+                                          double tolerance, const std::uint8_t *ground) {
   const std::size_t n = s.n;
   std::vector<std::uint8_t> resting(n, 0);
   if (n == 0) return resting;
@@ -43,7 +43,8 @@ std::vector<std::uint8_t> resting_spheres(const SphereArrays &s, double substrat
   }
   std::vector<std::uint32_t> queue;
   for (std::size_t i = 0; i < n; ++i)
-    if (s.z[i] - s.r[i] <= substrate_z + 2 * s.r[i] * tolerance) resting[i] = 1, queue.push_back(std::uint32_t(i));
+    if ((ground && ground[i]) || s.z[i] - s.r[i] <= substrate_z + 2 * s.r[i] * tolerance)
+      resting[i] = 1, queue.push_back(std::uint32_t(i));
   // Breadth-first over touching pairs from the spheres on the substrate.
   for (std::size_t head = 0; head < queue.size(); ++head) {
     const std::uint32_t i = queue[head];

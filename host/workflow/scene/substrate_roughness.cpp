@@ -1,0 +1,141 @@
+#include "workflow/scene/substrate_roughness.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/schema.hpp"
+#include "workflow/scene/layers_check.hpp"
+#include "workflow/scene/powder_sizes.hpp"
+#include "workflow/simulate/coarse_grain.hpp"
+
+namespace spreadmap {
+
+double substrate_sphere_diameter(const Scene &scene) {
+  const Roughness &r = scene.substrate.roughness.value();
+  if (r.sphere_diameter > 0) return r.sphere_diameter;
+  return size_distribution(scene.powder).quantile(0.5, scene::FractionBasis::volume);
+}
+
+std::uint64_t substrate_seed(const Scene &scene) {
+  return static_cast<std::uint64_t>(scene.powder.seed) + 0x9e3779b97f4a7c15ull;  // wraps: a different stream
+}
+
+namespace {
+
+scene::RoughnessSpec roughness_spec(const Scene &scene) {
+  const Roughness &r = scene.substrate.roughness.value();
+  scene::RoughnessSpec spec;
+  spec.rq = r.rq;
+  spec.correlation_length = r.correlation_length;
+  spec.sphere_diameter = substrate_sphere_diameter(scene);
+  spec.length = scene.domain.length;
+  spec.width = scene.domain.width;
+  spec.periodic_y = scene.domain.periodic_y;
+  spec.seed = substrate_seed(scene);
+  return spec;
+}
+
+double highest_top(const scene::RoughSubstrate &s) { return *std::max_element(s.z.begin(), s.z.end()) + s.radius; }
+
+}  // namespace
+
+std::optional<scene::RoughSubstrate> rough_substrate_of(const Scene &scene) {
+  if (!scene.substrate.roughness) return std::nullopt;
+  return scene::rough_substrate(roughness_spec(scene));
+}
+
+double substrate_level(const Scene &scene) {
+  const auto substrate = rough_substrate_of(scene);
+  return substrate ? substrate->mean_top : 0.0;
+}
+
+void check_roughness(const Scene &given, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
+                     Diagnostics &diag) {
+  if (!given.substrate.roughness) return;
+  const YAML::Node section = user["substrate"]["roughness"];
+  auto where = [&](const char *key) {
+    if (section.IsMap() && section[key]) return Location::of(file, section[key]);
+    return Location::of(file, section);
+  };
+  const std::string key = "scene.substrate.roughness";
+  if (given.backend == "cuda") {
+    diag.error(
+        Location::of(file, user["backend"] ? user["backend"] : section), "scene.backend",
+        "backend: cuda cannot run a rough substrate: its spheres are fixed particles, which step on the CPU only",
+        "set backend: auto or cpu, or remove substrate.roughness");
+    return;
+  }
+  const Scene scene = coarse_grained(given, registry);  // the sizes the engine runs
+  const Roughness &r = *scene.substrate.roughness;
+  const Domain &domain = scene.domain;
+  const double d = substrate_sphere_diameter(scene);
+  const std::string diameter = r.sphere_diameter > 0 ? fmt::format("{:g} um", d * 1e6)
+                                                     : fmt::format("{:g} um (the powder's D50 by volume)", d * 1e6);
+  if (d > domain.length || d > domain.width) {
+    diag.error(where("sphere_diameter"), key + ".sphere_diameter",
+               fmt::format("the sphere diameter {} does not fit the domain ({:g} x {:g} mm)", diameter,
+                           domain.length * 1e3, domain.width * 1e3),
+               fmt::format("give sphere_diameter <= {:g} um", std::min(domain.length, domain.width) * 1e6));
+    return;
+  }
+  if (r.correlation_length < 2 * d) {
+    diag.error(where("correlation_length"), key + ".correlation_length",
+               fmt::format("{:g} um is below 2 sphere diameters (2 x {}): the lattice of spheres cannot carry it",
+                           r.correlation_length * 1e6, diameter),
+               fmt::format("give correlation_length >= {:g} um, or a smaller sphere_diameter", 2 * d * 1e6));
+    return;
+  }
+  if (r.correlation_length > domain.length) {
+    diag.error(where("correlation_length"), key + ".correlation_length",
+               fmt::format("{:g} mm is longer than the domain ({:g} mm): the surface would be one slope",
+                           r.correlation_length * 1e3, domain.length * 1e3),
+               fmt::format("give correlation_length <= {:g} mm", domain.length * 1e3));
+    return;
+  }
+  const double spheres = std::floor(domain.length / d) * std::floor(domain.width / d);
+  if (spheres > max_substrate_spheres) {
+    diag.error(where("sphere_diameter"), key + ".sphere_diameter",
+               fmt::format("spheres of {} make a substrate of {:.3g} fixed spheres, more than {:g}", diameter, spheres,
+                           max_substrate_spheres),
+               "give a larger sphere_diameter or make the domain smaller");
+    return;
+  }
+  scene::RoughSubstrate substrate;
+  try {
+    substrate = *rough_substrate_of(scene);
+  } catch (const std::invalid_argument &e) {
+    diag.error(where("correlation_length"), key, e.what(),
+               "give a longer correlation_length or a smaller sphere_diameter");
+    return;
+  }
+  const double peak = highest_top(substrate), above_mean = peak - substrate.mean_top;
+  const auto &gap = scene.spreader.params.contains("gap") ? scene.spreader.params["gap"] : nlohmann::json();
+  if (!gap.is_number()) {
+    diag.error(where("rq"), key,
+               fmt::format("the spreader '{}' has no gap to hold above the substrate's mean plane", scene.spreader.use),
+               "use a spreader plugin with a gap parameter (spreadmap plugins spreader lists them) or remove "
+               "substrate.roughness");
+    return;
+  }
+  if (above_mean >= gap.get<double>())
+    diag.error(where("rq"), key + ".rq",
+               fmt::format("the substrate's highest sphere reaches {:.3g} um above its mean plane, not below the "
+                           "spreader's gap ({:g} um): the spreader would strike the substrate",
+                           above_mean * 1e6, gap.get<double>() * 1e6),
+               "use a smaller rq or a larger spreader gap");
+  const double later_layers = double(scene.layers.count - 1) * scene.layers.thickness;
+  const double heap = estimated_heap_height(scene), needed = peak + later_layers + heap;
+  if (needed > domain.height)
+    diag.error(where("rq"), key,
+               fmt::format("the substrate's peaks ({:.3g} mm), {:.3g} mm of further layers and the heap fed on top "
+                           "(about {:.3g} mm at a packing of {:g}) need {:.3g} mm, more than the domain's height "
+                           "{:.3g} mm",
+                           peak * 1e3, later_layers * 1e3, heap * 1e3, heap_packing_estimate, needed * 1e3,
+                           domain.height * 1e3),
+               fmt::format("make the domain taller (domain.height >= {:.3g} mm)", needed * 1e3));
+}
+
+}  // namespace spreadmap
