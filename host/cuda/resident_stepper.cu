@@ -306,12 +306,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
         run_reported([&](Report *out) { launch_kick_drift(state, half, dt, out); }, "the first half kick");
     if (first.nonfinite > 0) fail_on_host(state, [&] { state.report_bad_particle(); });
     bool rebuild_now = !state.list_valid;
-    if (first.escaped > 0) {
-      sim_to_host(state);
-      state.remove_escaped();
-      upload(state);
-      rebuild_now = true;
-    }
+    if (first.escaped > 0) state.leaving = true;  // removed at the next build, as on the CPU
     double largest;
     {
       const unsigned long long bits = first.d2_bits;
@@ -422,6 +417,11 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   // The engine's rebuild_list, on the device: bounds, grid (the same host function), cells, a stable
   // sort by cell, every column gathered, cell ranges, then the list counted and filled.
   void rebuild(State &state) {
+    if (state.leaving) {
+      sim_to_host(state);
+      state.remove_escaped();
+      upload(state);
+    }
     auto &p = state.particles;
     const auto &d = state.domain;
     ++state.counters.list_builds;

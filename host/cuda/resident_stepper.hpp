@@ -10,9 +10,9 @@
 // the order of the CPU's stable counting sort, so the list, every particle's order of summation, and
 // therefore every bit of the result equal the CPU backend's (tests/gpu: engine_backends_test).
 //
-// Not on the GPU: sleeping particles (refused with a clear error). Rare events (a particle leaving
-// the domain, a run-time check firing) bring the state to the host, are handled there by the
-// engine's own code, and the state goes back.
+// Not on the GPU: sleeping particles (refused with a clear error). Rare events (removing the
+// particles that left the domain, at the list build after they left; a run-time check firing)
+// bring the state to the host, are handled there by the engine's own code, and the state goes back.
 #pragma once
 #include <memory>
 #include <utility>

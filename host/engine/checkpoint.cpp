@@ -108,6 +108,7 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   step_resolved_ = r.value<std::uint8_t>() != 0;
   state_.list_valid = r.value<std::uint8_t>() != 0;
   state_.forces_valid = r.value<std::uint8_t>() != 0;
+  state_.leaving = true;  // not stored: whether any particle is outside is found at the next build
   next_id_ = r.value<std::uint32_t>();
   state_.counters = RunCounters{};
   state_.counters.removed = r.value<std::uint64_t>();

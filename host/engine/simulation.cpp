@@ -329,6 +329,7 @@ template <class Real> void Simulation<Real>::resolve_step() {
 // neighbour list
 
 template <class Real> void Simulation<Real>::rebuild_list() {
+  if (state_.leaving) state_.remove_escaped();
   auto &p = state_.particles;
   const std::size_t n = p.size();
   ++state_.counters.list_builds;
@@ -748,8 +749,9 @@ template <class Real> KickDrift<Real> Simulation<Real>::integration(Real half_dt
 // First half kick (rotation too) and drift in one pass over memory, preceded in the same pass by
 // the last step's second half kick and check when it is pending; the force and torque accumulators
 // are cleared once used, so the next evaluation needs no pass of its own. Counts the particles
-// outside open axes and the non-finite ones; returns true when the list must be rebuilt: some
-// particle moved by half the skin since the last build (LAMMPS' and LIGGGHTS' criterion).
+// outside open axes (removed at the next build) and the non-finite ones; returns true when the list
+// must be rebuilt: some particle moved by half the skin since the last build (LAMMPS' and
+// LIGGGHTS' criterion).
 template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real dt) {
   auto &p = state_.particles;
   const std::size_t n = p.size();
@@ -782,9 +784,9 @@ template <class Real> bool Simulation<Real>::kick_and_drift(Real half_dt, Real d
     ++state_.step;
     state_.report_bad_particle();
   }
-  if (escaped > 0) state_.remove_escaped();
+  if (escaped > 0) state_.leaving = true;  // removed at the next build
   const Real half_skin = Real(0.5 * state_.skin);
-  return escaped > 0 || !(largest <= half_skin * half_skin);
+  return !(largest <= half_skin * half_skin);
 }
 
 // Second half kick fused with the per-step sanity check (NaN, speed limit).

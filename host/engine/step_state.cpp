@@ -15,6 +15,7 @@ template <class Real> void StepState<Real>::resize_walls() {
 }
 
 template <class Real> void StepState<Real>::remove_escaped() {
+  leaving = false;
   auto &p = particles;
   const std::size_t n = p.size();
   std::vector<std::uint32_t> kept, scratch_index;

@@ -45,6 +45,11 @@ template <class Real> struct StepState {
   // before the forces are evaluated; forces_valid false: the forces must be evaluated before a kick.
   bool list_valid = false;
   bool forces_valid = false;
+  // Some particle's centre may be outside an open axis: it is removed (remove_escaped) at the next
+  // list build, not at once. Until then it moves on and touches only what it touched as it left;
+  // removing it at once would rebuild the list of all whenever one leaves (an open-sided plate
+  // loses spheres almost every step).
+  bool leaving = false;
 
   // --- the step's parameters, chosen by the Simulation ------------------------------------------
   double dt = 0;           // [s]
@@ -54,7 +59,7 @@ template <class Real> struct StepState {
 
   // --- services on this copy of the state -------------------------------------------------------
   // Removes the particles whose centre left an open axis (with their wall history), counts them in
-  // counters.removed and marks the list invalid.
+  // counters.removed and marks the list invalid when there were some; clears `leaving`.
   void remove_escaped();
   // The run-time checks' error messages: they throw RunError naming the first offending particle
   // (NaN or infinite, or faster than speed_limit), and the first pair or wall contact deeper than
