@@ -153,10 +153,15 @@ template <class Real> void Simulation<Real>::add_particles(ParticleSet set, doub
 template <class Real> ParticleSet Simulation<Real>::state() const {
   const auto &p = state_.particles;
   sync_host();
+  // the particles in the domain: those that left it are removed at the next list build
+  std::vector<std::uint32_t> kept;
+  for (std::size_t i = 0; i < p.size(); ++i)
+    if (!state_.leaving || !state_.outside(i)) kept.push_back(static_cast<std::uint32_t>(i));
   ParticleSet s;
-  const std::size_t n = p.size();
-  auto copy = [n](const std::vector<Real> &from, std::vector<double> &to) {
-    to.assign(from.begin(), from.begin() + n);
+  const std::size_t n = kept.size();
+  auto copy = [&kept, n](const std::vector<Real> &from, std::vector<double> &to) {
+    to.resize(n);
+    for (std::size_t k = 0; k < n; ++k) to[k] = from[kept[k]];
   };
   copy(p.x, s.x);
   copy(p.y, s.y);
@@ -169,16 +174,28 @@ template <class Real> ParticleSet Simulation<Real>::state() const {
   copy(p.wz, s.wz);
   copy(p.r, s.radius);
   copy(p.m, s.mass);
-  s.id = p.id;
+  s.id.resize(n);
+  for (std::size_t k = 0; k < n; ++k) s.id[k] = p.id[kept[k]];
   if (fixed_ > 0) {
     s.fixed.assign(n, 0);
-    for (std::size_t i = 0; i < n; ++i)
-      if (p.inv_m[i] == 0) {
-        s.fixed[i] = 1;
-        s.mass[i] /= fixed_mass_scale;
+    for (std::size_t k = 0; k < n; ++k)
+      if (p.inv_m[kept[k]] == 0) {
+        s.fixed[k] = 1;
+        s.mass[k] /= fixed_mass_scale;
       }
   }
   return s;
+}
+
+template <class Real> std::size_t Simulation<Real>::size() const {
+  if (!state_.leaving) return state_.particles.size();
+  sync_host();
+  return state_.particles.size() - state_.outside_count();
+}
+
+template <class Real> std::uint64_t Simulation<Real>::removed_count() const {
+  sync_host();
+  return state_.counters.removed + (state_.leaving ? state_.outside_count() : 0);
 }
 
 template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wall) {

@@ -54,8 +54,9 @@ template <class Real = double> class Simulation {
   void add_particles(ParticleSet set, double density = 0);
   static constexpr double fixed_mass_scale = 0x1p40;  // a power of two: the mass comes back exactly
   std::size_t fixed_count() const { return fixed_; }
-  std::size_t size() const { return state_.particles.size(); }
-  // The current state in the engine's current (cell-sorted) order, in double.
+  std::size_t size() const;  // the particles in the domain (arrays() also holds those leaving it)
+  // The current state in the engine's current (cell-sorted) order, in double: the particles in the
+  // domain (one that left it is removed at the next list build, and is not part of the state).
   ParticleSet state() const;
   const ParticleArrays<Real> &arrays() const {
     sync_host();
@@ -101,7 +102,9 @@ template <class Real = double> class Simulation {
   void force_rotation(bool on);
 
   // --- figures -------------------------------------------------------------------------------
-  std::uint64_t removed_count() const { return state_.counters.removed; }
+  // The particles that left the domain: removed, or to be removed at the next list build (state()
+  // leaves those out already).
+  std::uint64_t removed_count() const;
   const RunCounters &counters() const { return state_.counters; }
   bool rotation_integrated() const { return state_.rotate; }
   // The neighbour list over arrays()' order: it holds every touching pair of the current state

@@ -20,13 +20,8 @@ template <class Real> void StepState<Real>::remove_escaped() {
   const std::size_t n = p.size();
   std::vector<std::uint32_t> kept, scratch_index;
   std::vector<Real> scratch_real;
-  for (std::size_t i = 0; i < n; ++i) {
-    bool inside = true;
-    const Real pos[3] = {p.x[i], p.y[i], p.z[i]};
-    for (int a = 0; a < 3; ++a)
-      if (!domain.periodic[a]) inside = inside && pos[a] >= Real(domain.lo[a]) && pos[a] < Real(domain.hi[a]);
-    if (inside) kept.push_back(static_cast<std::uint32_t>(i));
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (!outside(i)) kept.push_back(static_cast<std::uint32_t>(i));
   const std::size_t removed = n - kept.size();
   if (removed == 0) return;
   p.for_each_real([&](std::vector<Real> &c) { gather(c, kept, scratch_real); });
@@ -37,6 +32,20 @@ template <class Real> void StepState<Real>::remove_escaped() {
   resize_walls();
   counters.removed += removed;
   list_valid = false;
+}
+
+template <class Real> bool StepState<Real>::outside(std::size_t i) const {
+  const auto &p = particles;
+  const Real pos[3] = {p.x[i], p.y[i], p.z[i]};
+  for (int a = 0; a < 3; ++a)
+    if (!domain.periodic[a] && !(pos[a] >= Real(domain.lo[a]) && pos[a] < Real(domain.hi[a]))) return true;
+  return false;
+}
+
+template <class Real> std::size_t StepState<Real>::outside_count() const {
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < particles.size(); ++i) k += outside(i);
+  return k;
 }
 
 template <class Real> void StepState<Real>::report_bad_particle() const {

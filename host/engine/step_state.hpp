@@ -61,6 +61,9 @@ template <class Real> struct StepState {
   // Removes the particles whose centre left an open axis (with their wall history), counts them in
   // counters.removed and marks the list invalid when there were some; clears `leaving`.
   void remove_escaped();
+  // Whether particle i's centre is outside an open axis (it left the domain), and how many are.
+  bool outside(std::size_t i) const;
+  std::size_t outside_count() const;
   // The run-time checks' error messages: they throw RunError naming the first offending particle
   // (NaN or infinite, or faster than speed_limit), and the first pair or wall contact deeper than
   // settings.overlap_limit (pairs looked at only when `bad_pairs` > 0: a count found beforehand).

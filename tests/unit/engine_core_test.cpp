@@ -186,6 +186,35 @@ TEST(EngineRemoval, CountsParticlesLeavingOpenFacesAndWrapsPeriodicOnes) {
   }
 }
 
+// A particle that leaves is removed at the next list build, not at once (an open-sided plate loses
+// some almost every step): until then state(), size() and removed_count() already count it out,
+// while the arrays still hold it; the build that the other particle's motion schedules removes it.
+TEST(EngineRemoval, ALeavingParticleIsRemovedAtTheNextListBuild) {
+  TestSpringDashpot law = TestSpringDashpot::with_restitution(100, 0.5);
+  Settings s = quiet();
+  s.gravity = {0, 0, 0};
+  s.speed_limit = 100;
+  s.skin = 2e-4;  // a rebuild once something moved 0.1 mm
+  Simulation<double> sim({{0, 0, 0}, {0.02, 0.02, 0.02}, {false, false, false}}, bind(law), s);
+  ParticleSet p;
+  push_particle(p, 0.019999, 0.01, 0.01, 0.0005, 0.01, 0, 0);  // id 0: crosses x = hi within 0.1 ms, slowly
+  push_particle(p, 0.005, 0.01, 0.01, 0.0005, 0.5, 0, 0);      // id 1: half a skin in 0.2 ms
+  sim.add_particles(p, 2500);
+  sim.step();
+  const std::uint64_t builds = sim.counters().list_builds;
+  while (sim.arrays().x[0] < 0.02 && sim.arrays().x[1] < 0.02) sim.step();
+  ASSERT_EQ(sim.counters().list_builds, builds) << "no build yet: the leaving one is still held";
+  EXPECT_EQ(sim.arrays().size(), 2u);
+  EXPECT_EQ(sim.size(), 1u);
+  EXPECT_EQ(sim.removed_count(), 1u);
+  EXPECT_EQ(sim.state().id, (std::vector<std::uint32_t>{1}));
+  while (sim.counters().list_builds == builds) sim.step();  // particle 1 has moved half a skin
+  EXPECT_EQ(sim.arrays().size(), 1u);
+  EXPECT_EQ(sim.size(), 1u);
+  EXPECT_EQ(sim.removed_count(), 1u);
+  EXPECT_EQ(sim.state().id, (std::vector<std::uint32_t>{1}));
+}
+
 TEST(EnginePeriodic, CollisionAcrossTheBoundaryEqualsOneInside) {
   // The same oblique frictional collision, once straddling the periodic x faces and once in the
   // middle. Positions differ by a domain length, so they round differently: with |x| ~ 1e-2 m and

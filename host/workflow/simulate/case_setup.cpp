@@ -122,7 +122,7 @@ ParticleSet settle_scene(const scene_file::LoadedScene &settling, PluginRegistry
         if (s.time() < min_time) return true;
         const auto &a = s.arrays();
         Real vmax2 = 0;
-        for (std::size_t i = 0; i < s.size(); ++i)
+        for (std::size_t i = 0; i < a.size(); ++i)
           vmax2 = std::max(vmax2, a.vx[i] * a.vx[i] + a.vy[i] * a.vy[i] + a.vz[i] * a.vz[i]);
         return std::sqrt(double(vmax2)) > v_rest;
       },
