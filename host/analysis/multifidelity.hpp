@@ -23,6 +23,9 @@
 
 namespace spreadmap::analysis {
 
+// The model input that holds the fidelity (0 cheap, 1 expensive); a map holds it at 1.
+inline constexpr const char *fidelity_input = "fidelity";
+
 struct MultiFidelityOptions {
   std::size_t budget_cheap = 45, budget_expensive = 15;  // most cases of each fidelity (initial ones included)
   double target_loo_nrmse = 1.0;                         // [%] on the expensive cases, every output...

@@ -1,6 +1,7 @@
 // design: adaptive in a workflow: the 3 x 3 space-filling start, then the GP's choices up to the
 // budget; every case characterised; a second run recomputes nothing and chooses the same cases
-// (the engine is deterministic, so the GP sees the same data).
+// (the engine is deterministic, so the GP sees the same data). With two fidelities: the cheap
+// cases' scenes carry the cheap keys, metrics.csv a fidelity input, and the map holds it at 1.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -56,6 +57,51 @@ TEST(AdaptiveDesign, StartsSpaceFillingThenSpendsTheBudgetAndResumesWithoutRecom
   ASSERT_EQ(run("run " + wf + " --out " + dir.string(), out), 0) << out;
   EXPECT_NE(out.find("(0 run now, 11 finished before)"), std::string::npos) << out;
   EXPECT_EQ(json_file(dir / "adaptive.json")["cases"], a["cases"]);
+}
+
+TEST(AdaptiveDesign, TwoFidelitiesRunCheapCasesOnTheirSceneAndMapTheExpensiveOne) {
+  const fs::path dir = fs::path(SPREADMAP_BINARY_DIR) / "test-runs" / "adaptive_fidelity";
+  fs::remove_all(dir);
+  const std::string wf = std::string(SPREADMAP_SOURCE_DIR) + "/tests/integration/data/adaptive_fidelity.yaml";
+  std::string out;
+  ASSERT_EQ(run("run " + wf + " --out " + dir.string(), out), 0) << out;
+
+  const auto a = json_file(dir / "adaptive.json");
+  EXPECT_EQ(a["cheap_cases"], 6) << "the budget of cheap cases: every setting";
+  EXPECT_EQ(a["expensive_cases"], 5) << "the 4 corners, then one more (target 0.01 % is out of reach)";
+  EXPECT_EQ(a["stop_reason"], "budget");
+  EXPECT_NE(out.find("the map needed 5 expensive runs"), std::string::npos) << out;
+  const auto manifest = json_file(dir / "manifest.json");
+  ASSERT_EQ(manifest["design"]["variables"].size(), 3u);
+  EXPECT_EQ(manifest["design"]["variables"][2]["name"], "fidelity");
+
+  // cheap cases are c006..c011 (the row + 6 candidates), with the softer contacts
+  const auto t = spreadmap::analysis::Table::read_csv((dir / "metrics.csv").string());
+  ASSERT_EQ(t.rows(), 11u);
+  const auto ids = t.texts("case");
+  const auto fidelity = t.numbers("fidelity");
+  std::size_t cheap = 0;
+  for (std::size_t i = 0; i < t.rows(); ++i) {
+    const auto scene = json_file(dir / "cases" / ids[i] / "scene.json");
+    const bool is_cheap = fidelity[i] == 0.0;
+    cheap += is_cheap;
+    EXPECT_EQ(is_cheap, std::stoi(ids[i].substr(1)) >= 6) << ids[i];
+    EXPECT_DOUBLE_EQ(scene["contact"]["params"]["overlap_max"].get<double>(), is_cheap ? 10e-6 : 5e-6) << ids[i];
+  }
+  EXPECT_EQ(cheap, 6u);
+
+  // the model takes the fidelity as an input; the map holds it at 1 on the default 101 x 81 grid
+  const auto map = spreadmap::analysis::Table::read_csv((dir / "map" / "map.csv").string());
+  ASSERT_EQ(map.rows(), 101u * 81u);
+  for (double f : map.numbers("fidelity")) ASSERT_EQ(f, 1.0);
+  const auto optimum = json_file(dir / "map" / "optimum.json");
+  for (const auto &o : optimum["optima"]) {
+    if (!o.value("found", false)) continue;
+    EXPECT_EQ(o["inputs"]["fidelity"], 1.0);
+  }
+
+  ASSERT_EQ(run("run " + wf + " --out " + dir.string(), out), 0) << out;
+  EXPECT_NE(out.find("(0 run now, 11 finished before)"), std::string::npos) << out;
 }
 
 }  // namespace

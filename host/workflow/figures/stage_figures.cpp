@@ -102,7 +102,10 @@ struct PlaneGrid {
 
 PlaneGrid plane(const analysis::GridMap &g) {
   PlaneGrid p;
-  if (g.x.cols() != 2 || g.x.rows() < 4) return p;
+  // two inputs, or more whose others are held at one value (a two-fidelity model at fidelity 1)
+  if (g.x.cols() < 2 || g.x.rows() < 4) return p;
+  for (Eigen::Index c = 2; c < g.x.cols(); ++c)
+    if ((g.x.col(c).array() != g.x(0, c)).any()) return p;
   for (Eigen::Index r = 0; r < g.x.rows() && (r == 0 || g.x(r, 0) == g.x(0, 0)); ++r) p.omega.push_back(g.x(r, 1));
   const std::size_t nw = p.omega.size();
   if (nw < 2 || g.x.rows() % Eigen::Index(nw) != 0) return p;

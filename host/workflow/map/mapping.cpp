@@ -5,6 +5,7 @@
 
 #include "core/error.hpp"
 #include "core/files.hpp"
+#include "analysis/multifidelity.hpp"
 #include "core/suggest.hpp"
 #include "workflow/figures/stage_figures.hpp"
 
@@ -25,11 +26,21 @@ std::optional<std::size_t> output_index(const analysis::ModelFile &file, const s
 
 MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &file, const MapRequest &rq) {
   const auto model = load_model(registry, file);
-  auto points = rq.points.empty() ? analysis::default_grid_points(file.inputs.size()) : rq.points;
+  // A model of two fidelities answers for the expensive one: its fidelity input is held at 1 and the
+  // default resolution is that of the other inputs.
+  std::size_t mapped = 0;
+  for (const auto &v : file.inputs) mapped += v.name != analysis::fidelity_input;
+  const bool by_default = rq.points.empty();
+  auto points = by_default ? analysis::default_grid_points(mapped) : rq.points;
   std::vector<analysis::Axis> axes;
-  for (std::size_t i = 0; i < file.inputs.size(); ++i) {
+  for (std::size_t i = 0, k = 0; i < file.inputs.size(); ++i) {
     const auto &v = file.inputs[i];
-    axes.push_back({v.name, v.min, v.max, v.min == v.max ? 1 : points.at(i)});
+    if (v.name == analysis::fidelity_input) {
+      axes.push_back({v.name, 1.0, 1.0, 1});
+      continue;
+    }
+    const std::size_t n = points.at(by_default ? k++ : i);
+    axes.push_back({v.name, v.min, v.max, v.min == v.max ? 1 : n});
   }
   std::vector<std::string> outputs;
   for (const auto &o : file.outputs) outputs.push_back(o.name);

@@ -3,6 +3,9 @@
 // case and the setting where it is least sure runs next, until the cross-validated error reaches
 // `target_nrmse` or `budget` cases have run (analysis/adaptive.hpp). Case ids are the grid's row
 // numbers, so an interrupted design resumes from its finished cases. Writes adaptive.json.
+// With `fidelity:` (two fidelities, analysis/multifidelity.hpp) the cheap cases are the same rows
+// with the cheap keys set, ids after the candidates', and every case gets a `fidelity` input (0
+// cheap, 1 expensive) that train fits and map holds at 1.
 #pragma once
 #include "workflow/simulate/design.hpp"
 #include "workflow/stage.hpp"

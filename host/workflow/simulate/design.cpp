@@ -97,6 +97,53 @@ std::vector<double> parse_value_list(const YAML::Node &node, const sm_param_v1 &
   return out;
 }
 
+namespace {
+
+// `fidelity: {cheap: {KEY: VALUE, ...}, expensive_budget: N}` of an adaptive design: each cheap key a
+// numeric scene key that is not a design variable, with one value.
+void parse_fidelity(const YAML::Node &node, const std::string &file, const std::string &key_path, const Scene &scene,
+                    PluginRegistry &registry, Design &d, Diagnostics &diag) {
+  const std::string example = "{cheap: {domain.width: 1 mm, powder.count: 3357}, expensive_budget: 15}";
+  if (!node.IsMap()) return diag.error(Location::of(file, node), key_path, "expected a mapping: " + example);
+  static const std::vector<std::string> keys = {"cheap", "expensive_budget"};
+  for (const auto &kv : node) {
+    const std::string name = kv.first.as<std::string>();
+    if (std::find(keys.begin(), keys.end(), name) != keys.end()) continue;
+    const std::string near = closest(name, keys);
+    diag.error(Location::of(file, kv.first), key_path + "." + name, "unknown key",
+               (near.empty() ? "" : "did you mean '" + near + "'? ") + "known: " + join(keys));
+  }
+  const YAML::Node cheap = node["cheap"];
+  if (!cheap || !cheap.IsMap() || cheap.size() == 0)
+    return diag.error(Location::of(file, cheap ? cheap : node), key_path + ".cheap",
+                      "the scene keys that make a case cheap, each with one value: " + example);
+  for (const auto &kv : cheap) {
+    const std::string name = kv.first.as<std::string>(), path = key_path + ".cheap." + name;
+    DesignVariable var;
+    std::string why;
+    if (!find_scene_key(scene, registry, name, var.key, why)) {
+      diag.error(Location::of(file, kv.first), path, why);
+      continue;
+    }
+    if (var.key.param->type != SM_NUMBER && var.key.param->type != SM_INTEGER) {
+      diag.error(Location::of(file, kv.first), path, "only numeric scene keys can set the cheap fidelity");
+      continue;
+    }
+    for (const auto &v : d.variables)
+      if (v.key.name == var.key.name)
+        diag.error(Location::of(file, kv.first), path, "is a design variable",
+                   "the cheap fidelity sets keys the design does not vary");
+    const auto value = validate_value(*var.key.param, kv.second, file, path, diag);
+    if (!value.is_number()) continue;
+    var.values = {value.get<double>()};
+    d.cheap.push_back(var);
+  }
+  d.expensive_budget =
+      read_whole_number(node["expensive_budget"], file, key_path + ".expensive_budget", 3, 100000, 15, diag);
+}
+
+}  // namespace
+
 Design parse_design(const YAML::Node &node, const std::string &file, const std::string &key_path, const Scene &scene,
                     PluginRegistry &registry, Diagnostics &diag) {
   Design d;
@@ -119,8 +166,8 @@ Design parse_design(const YAML::Node &node, const std::string &file, const std::
       return d;
     }
   }
-  static const std::set<std::string> reserved = {"type",    "samples", "seed",         "cases",
-                                                 "initial", "budget",  "target_nrmse", "outputs"};
+  static const std::set<std::string> reserved = {"type",   "samples",      "seed",    "cases",   "initial",
+                                                 "budget", "target_nrmse", "outputs", "fidelity"};
   auto integer = [&](const char *key, std::size_t def, std::size_t lo, std::size_t hi) {
     return read_whole_number(node[key], file, key_path + "." + key, lo, hi, def, diag);
   };
@@ -165,6 +212,7 @@ Design parse_design(const YAML::Node &node, const std::string &file, const std::
         auto v = validate_value(p, node["target_nrmse"], file, key_path + ".target_nrmse", diag);
         if (v.is_number()) d.target_nrmse = v;
       }
+      if (node["fidelity"]) parse_fidelity(node["fidelity"], file, key_path + ".fidelity", scene, registry, d, diag);
     }
   } else if (d.type == "latin_hypercube") {
     const std::size_t samples = integer("samples", 10, 1, 100000);
@@ -242,10 +290,12 @@ Design parse_design(const YAML::Node &node, const std::string &file, const std::
   return d;
 }
 
-Scene case_scene(const Scene &scene, const Design &design, std::size_t index) {
+Scene case_scene(const Scene &scene, const Design &design, std::size_t index, bool cheap) {
   Scene s = scene;
   for (std::size_t k = 0; k < design.variables.size(); ++k)
     apply_scene_value(s, design.variables[k].key, design.cases[index][k]);
+  if (cheap)
+    for (const auto &c : design.cheap) apply_scene_value(s, c.key, c.values.front());
   return s;
 }
 

@@ -31,6 +31,11 @@ struct Design {
   std::size_t initial = 9, budget = 0;
   double target_nrmse = 0;  // percent
   std::vector<std::string> outputs = {"vs", "rq"};
+  // adaptive with two fidelities (`fidelity: {cheap: {KEY: VALUE, ...}, expensive_budget: N}`): the
+  // scene keys set on the cheap cases (one value each) and the most expensive cases; `budget` then
+  // caps the cheap ones. Empty: one fidelity.
+  std::vector<DesignVariable> cheap;
+  std::size_t expensive_budget = 0;
 };
 
 Design parse_design(const YAML::Node &node, const std::string &file, const std::string &key_path, const Scene &scene,
@@ -40,8 +45,9 @@ Design parse_design(const YAML::Node &node, const std::string &file, const std::
 std::vector<double> parse_value_list(const YAML::Node &node, const sm_param_v1 &param, const std::string &file,
                                      const std::string &key_path, Diagnostics &diag);
 
-// The scene of one case: `scene` with the design variables set (apply_scene_value).
-Scene case_scene(const Scene &scene, const Design &design, std::size_t index);
+// The scene of one case: `scene` with the design variables set (apply_scene_value), and the cheap
+// fidelity's keys too when `cheap`.
+Scene case_scene(const Scene &scene, const Design &design, std::size_t index, bool cheap = false);
 // {name: value} of one case, SI.
 nlohmann::json case_inputs(const Design &design, std::size_t index);
 

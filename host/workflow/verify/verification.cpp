@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "analysis/multifidelity.hpp"
 #include "core/error.hpp"
 #include "workflow/map/mapping.hpp"
 
@@ -81,7 +82,8 @@ nlohmann::json edges_of(const analysis::ModelFile &model, const Eigen::VectorXd 
   for (std::size_t i = 0; i < model.inputs.size(); ++i) {
     const auto &v = model.inputs[i];
     const double tol = 1e-9 * std::max(std::abs(v.max - v.min), std::abs(v.max));
-    if (v.max <= v.min) continue;  // a fixed input has no border to move
+    // a fixed input has no border to move; a two-fidelity model is mapped at its expensive fidelity
+    if (v.max <= v.min || v.name == analysis::fidelity_input) continue;
     const double xi = x(Eigen::Index(i));
     if (xi <= v.min + tol) edges.push_back({{"input", v.name}, {"side", "min"}});
     else if (xi >= v.max - tol) edges.push_back({{"input", v.name}, {"side", "max"}});

@@ -12,6 +12,7 @@
 
 #include <optional>
 
+#include "analysis/multifidelity.hpp"
 #include "analysis/replicates.hpp"
 #include "analysis/table.hpp"
 #include "core/error.hpp"
@@ -242,10 +243,12 @@ class VerifyStage : public Stage {
     for (auto &[stage, i] : stages) stage->run(ctx);
   }
 
-  // The workflow's scene at x: each model input is a scene key (U, omega, ...), set as a design does.
+  // The workflow's scene at x: each model input is a scene key (U, omega, ...), set as a design does;
+  // the fidelity input of a two-fidelity model (held at 1, the expensive one) is the scene as it is.
   static Scene point_scene(StageContext &ctx, const analysis::ModelFile &model, const Eigen::VectorXd &x) {
     Scene scene = ctx.scene;
     for (std::size_t i = 0; i < model.inputs.size(); ++i) {
+      if (model.inputs[i].name == analysis::fidelity_input) continue;
       SceneKey key;
       std::string why;
       if (!find_scene_key(ctx.scene, ctx.registry, model.inputs[i].name, key, why))
