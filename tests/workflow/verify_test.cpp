@@ -77,6 +77,12 @@ TEST(Verify, TheVerifiedOptimumHoldsItsPredictionItsRunsAndTheVerdict) {
   ASSERT_EQ(again.exit_code, 0) << again.describe();
   EXPECT_TRUE(t::contains(again.err, "verify: 1 points x 2 runs, 0 to run, 2 finished already")) << again.err;
   EXPECT_EQ(t::json_file(run / "map/verified.json"), verified);
+
+  // characterise alone measures what the loop's last one did: the same rows, verify runs included
+  const std::string metrics = t::slurp(run / "metrics.csv");
+  const auto alone = t::run({{"run", workflow.string(), "--out", run.string(), "--only", "characterise"}, {}, {}, {}});
+  ASSERT_EQ(alone.exit_code, 0) << alone.describe();
+  EXPECT_EQ(t::slurp(run / "metrics.csv"), metrics);
   if (!HasFailure()) fs::remove_all(run);
 }
 
@@ -133,5 +139,11 @@ TEST(Verify, TheLoopRefitsWithItsRunsUntilTheOptimumHolds) {
   EXPECT_FALSE(t::contains(again.err, "to run, 0 finished")) << again.err;
   EXPECT_TRUE(t::contains(again.err, "verify: 1 points x 3 runs, 0 to run, 3 finished already")) << again.err;
   EXPECT_EQ(t::json_file(run / "map/verified.json"), verified);
+
+  // characterise alone measures what the loop's last one did: the same rows, verify runs included
+  const std::string metrics = t::slurp(run / "metrics.csv");
+  const auto alone = t::run({{"run", workflow.string(), "--out", run.string(), "--only", "characterise"}, {}, {}, {}});
+  ASSERT_EQ(alone.exit_code, 0) << alone.describe();
+  EXPECT_EQ(t::slurp(run / "metrics.csv"), metrics);
   if (!HasFailure()) fs::remove_all(run);
 }

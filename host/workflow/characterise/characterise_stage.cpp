@@ -5,7 +5,8 @@
 // settings did not change is not evaluated again. Multi-layer rows also get effective_thickness and
 // deposited_thickness, from consecutive layers (bed_thickness.hpp). The verify loop's characterise
 // (`verify: {rounds: N}`) also measures the verify runs the loop added to the manifest
-// (`verify_cases`) of the rounds before it, so that the model is refitted with them.
+// (`verify_cases`) of the rounds before it, so that the model is refitted with them; run alone
+// (`--only characterise`), all of them, as the loop's last characterise did.
 // Replicated points (simulate: replicates) get one row per point in metrics.csv (each metric's
 // mean, its _std over the replicates, and `replicates`); every run's own row is kept in
 // metrics_replicates.csv.
@@ -51,8 +52,15 @@ class CharacteriseStage : public Stage {
     std::vector<nlohmann::json> results;
     std::size_t evaluated = 0, missing = 0;
     nlohmann::json cases = manifest["cases"];
-    for (const auto &c : manifest.value("verify_cases", nlohmann::json::array()))
-      if (c.value("round", verify_rounds_) < verify_rounds_) cases.push_back(c);
+    const nlohmann::json verify_cases = manifest.value("verify_cases", nlohmann::json::array());
+    // Run alone (--only without verify), the stage measures what the verify loop's last characterise
+    // did: every round's runs that joined the training data (those the manifest records); in a whole
+    // run the loop replays its rounds after this stage.
+    std::size_t rounds = verify_rounds_;
+    if (rounds == 0 && !ctx.options.only.empty() && !ctx.options.only.count("verify"))
+      for (const auto &c : verify_cases) rounds = std::max<std::size_t>(rounds, c.value("round", std::size_t(0)) + 1);
+    for (const auto &c : verify_cases)
+      if (c.value("round", rounds) < rounds) cases.push_back(c);
     for (const auto &c : cases) {
       const std::string id = c["id"];
       const fs::path dir = c.contains("dir") ? ctx.run.root() / c["dir"].get<std::string>() : ctx.run.case_dir(id);
