@@ -233,9 +233,10 @@ BedStart start_on_bed(const Scene &raised, PluginRegistry &reg, const CaseReques
 
 // What case.json records of a rough substrate: its spheres, their diameter, the mean plane of their
 // tops and the R_q of the tops about it.
-nlohmann::json substrate_record(const Scene &scene, const ParticleSet &substrate) {
-  double rq = 0;
-  const double level = substrate_level(scene);
+nlohmann::json substrate_record(const ParticleSet &substrate) {
+  double level = 0, rq = 0;  // from the spheres at hand: generating the substrate again would cost as much
+  for (std::size_t i = 0; i < substrate.size(); ++i) level += substrate.z[i] + substrate.radius[i];
+  level /= double(substrate.size());
   for (std::size_t i = 0; i < substrate.size(); ++i) rq += std::pow(substrate.z[i] + substrate.radius[i] - level, 2);
   return {{"spheres", substrate.size()},
           {"sphere_diameter", 2 * substrate.radius.front()},
@@ -269,7 +270,7 @@ template <class Real> nlohmann::json spread_one_layer(const CaseRequest &req, Pl
     const std::size_t removed_settling = on_substrate->resumed ? on_substrate->start.size() - pass->state.size() -
                                                                      pass->record["removed"].get<std::size_t>()
                                                                : on_substrate->removed_settling;
-    out["substrate"] = substrate_record(scene, substrate);
+    out["substrate"] = substrate_record(substrate);
     out["particles_fed"] = on_substrate->fed;
     out["removed_settling"] = removed_settling;
   }
@@ -354,7 +355,7 @@ template <class Real> nlohmann::json spread_layers(const CaseRequest &req, Plugi
                         {"precision", precision_name(scene.precision)},
                         {"spreader", last["spreader"]},
                         {"spreader_end", last["spreader_end"]}};
-  if (substrate.size() > 0) out["substrate"] = substrate_record(scene, substrate);
+  if (substrate.size() > 0) out["substrate"] = substrate_record(substrate);
   return write_finished(req.dir, "case.json", out);
 }
 

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <random>
 
+#include <fmt/format.h>
+
+#include "analysis/adaptive.hpp"
+#include "analysis/multifidelity.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 #include "core/units.hpp"
@@ -140,6 +144,31 @@ void parse_fidelity(const YAML::Node &node, const std::string &file, const std::
   }
   d.expensive_budget =
       read_whole_number(node["expensive_budget"], file, key_path + ".expensive_budget", 3, 100000, 15, diag);
+  if (d.cases.empty() || d.variables.empty()) return;
+  // The starts analysis::multi_fidelity_design takes (adaptive_run.cpp): the budgets must hold them.
+  Eigen::MatrixXd candidates(Eigen::Index(d.cases.size()), Eigen::Index(d.variables.size()));
+  for (std::size_t i = 0; i < d.cases.size(); ++i)
+    for (std::size_t k = 0; k < d.variables.size(); ++k) candidates(Eigen::Index(i), Eigen::Index(k)) = d.cases[i][k];
+  const auto lattice = analysis::space_filling_start(candidates);
+  const std::size_t expensive_start = analysis::corners_and_centre(candidates, lattice).size();
+  const YAML::Node budget_node = node["expensive_budget"] ? node["expensive_budget"] : node;
+  if (expensive_start < 3)
+    diag.error(Location::of(file, node), key_path,
+               fmt::format("the expensive cases start at the corners and centre of the design's box: {} here, "
+                           "fewer than the 3 a fit needs",
+                           expensive_start),
+               "give a variable 3 or more values");
+  else if (d.expensive_budget < expensive_start)
+    diag.error(Location::of(file, budget_node), key_path + ".expensive_budget",
+               fmt::format("{} is below the {} expensive cases the design starts with (the corners and centre of "
+                           "its box)",
+                           d.expensive_budget, expensive_start),
+               fmt::format("give expensive_budget >= {}", expensive_start));
+  const std::size_t cheap_start = std::min(lattice.size(), std::max<std::size_t>(2, d.initial));
+  if (d.budget < cheap_start)
+    diag.error(Location::of(file, node), key_path.substr(0, key_path.rfind('.')) + ".budget",
+               fmt::format("{} is below the {} cheap cases the design starts with", d.budget, cheap_start),
+               fmt::format("give budget >= {} (or a smaller initial)", cheap_start));
 }
 
 }  // namespace
