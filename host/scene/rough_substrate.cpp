@@ -73,27 +73,80 @@ HeightField sm::scene::gaussian_height_field(std::size_t nx, std::size_t ny, dou
   return f;
 }
 
-sm::scene::RoughSubstrate sm::scene::rough_substrate(const RoughnessSpec &s) {
+namespace {
+
+// The lattice of spec: nx x ny points spaced d along x and dy along y (width / ny when periodic, so it wraps).
+struct Lattice {
+  std::size_t nx, ny;
+  double dx, dy;
+};
+
+Lattice lattice_of(const sm::scene::RoughnessSpec &s) {
   const double d = s.sphere_diameter;
   if (!(d > 0) || !(d <= s.length) || !(d <= s.width))
     throw std::invalid_argument("rough substrate: sphere diameter " + std::to_string(d * 1e6) +
                                 " um does not fit the domain");
   const auto nx = static_cast<std::size_t>(std::floor(s.length / d));
   const auto ny = static_cast<std::size_t>(std::floor(s.width / d));
-  const double dy = s.periodic_y ? s.width / static_cast<double>(ny) : d;
-  RoughSubstrate out;
-  out.field = gaussian_height_field(nx, ny, d, dy, s.rq, s.correlation_length, s.periodic_y, s.seed);
-  out.radius = d / 2;
+  return {nx, ny, d, s.periodic_y ? s.width / static_cast<double>(ny) : d};
+}
+
+// Spheres of diameter lattice.dx at the lattice's cell centres, their tops on `field` shifted so that
+// the lowest sphere stands on z = 0.
+sm::scene::RoughSubstrate spheres_on(HeightField field, const Lattice &l) {
+  sm::scene::RoughSubstrate out;
+  out.field = std::move(field);
+  out.radius = l.dx / 2;
   const double lowest = *std::min_element(out.field.h.begin(), out.field.h.end());
   double tops = 0;
-  for (std::size_t iy = 0; iy < ny; ++iy)
-    for (std::size_t ix = 0; ix < nx; ++ix) {
-      const double z = out.radius + out.field.h[iy * nx + ix] - lowest;
-      out.x.push_back((static_cast<double>(ix) + 0.5) * d);
-      out.y.push_back((static_cast<double>(iy) + 0.5) * dy);
+  for (std::size_t iy = 0; iy < l.ny; ++iy)
+    for (std::size_t ix = 0; ix < l.nx; ++ix) {
+      const double z = out.radius + out.field.h[iy * l.nx + ix] - lowest;
+      out.x.push_back((static_cast<double>(ix) + 0.5) * l.dx);
+      out.y.push_back((static_cast<double>(iy) + 0.5) * l.dy);
       out.z.push_back(z);
       tops += z + out.radius;
     }
   out.mean_top = tops / static_cast<double>(out.z.size());
   return out;
+}
+
+}  // namespace
+
+sm::scene::RoughSubstrate sm::scene::rough_substrate(const RoughnessSpec &s) {
+  const Lattice l = lattice_of(s);
+  return spheres_on(gaussian_height_field(l.nx, l.ny, l.dx, l.dy, s.rq, s.correlation_length, s.periodic_y, s.seed), l);
+}
+
+HeightField sm::scene::sampled_height_field(const HeightField &map, std::size_t nx, std::size_t ny, double dx,
+                                            double dy) {
+  if (map.nx < 2 || map.ny < 2 || map.h.size() != map.nx * map.ny || !(map.dx > 0) || !(map.dy > 0))
+    throw std::invalid_argument("height map: at least 2 x 2 points on a grid with positive spacings");
+  // One coordinate in map cells, wrapped onto the tile [0, n): the cell's first index and the weight of the next.
+  auto locate = [](double at, double spacing, std::size_t n) {
+    const double period = spacing * static_cast<double>(n);
+    double u = std::fmod(at, period) / spacing;
+    if (u < 0) u += static_cast<double>(n);
+    auto i = static_cast<std::size_t>(std::floor(u));
+    if (i >= n) i = n - 1;  // fmod rounding at the period
+    return std::pair{i, u - static_cast<double>(i)};
+  };
+  HeightField out{nx, ny, dx, dy, std::vector<double>(nx * ny)};
+  for (std::size_t iy = 0; iy < ny; ++iy) {
+    const auto [j, wy] = locate((static_cast<double>(iy) + 0.5) * dy, map.dy, map.ny);
+    const std::size_t j1 = (j + 1) % map.ny;
+    for (std::size_t ix = 0; ix < nx; ++ix) {
+      const auto [i, wx] = locate((static_cast<double>(ix) + 0.5) * dx, map.dx, map.nx);
+      const std::size_t i1 = (i + 1) % map.nx;
+      const double below = (1 - wx) * map.h[j * map.nx + i] + wx * map.h[j * map.nx + i1];
+      const double above = (1 - wx) * map.h[j1 * map.nx + i] + wx * map.h[j1 * map.nx + i1];
+      out.h[iy * nx + ix] = (1 - wy) * below + wy * above;
+    }
+  }
+  return out;
+}
+
+sm::scene::RoughSubstrate sm::scene::measured_substrate(const HeightField &map, const RoughnessSpec &s) {
+  const Lattice l = lattice_of(s);
+  return spheres_on(sampled_height_field(map, l.nx, l.ny, l.dx, l.dy), l);
 }

@@ -54,4 +54,14 @@ struct RoughSubstrate {
 // Throws std::invalid_argument as gaussian_height_field, and for a sphere diameter that does not fit.
 RoughSubstrate rough_substrate(const RoughnessSpec &spec);
 
+// A measured surface sampled at a lattice's points ((ix + 1/2) dx, (iy + 1/2) dy): bilinear between the
+// map's points, which sit at (i map.dx, j map.dy) from its first one. The map is one tile of a
+// periodic surface (its last point is followed by its first, one spacing on): a domain larger than
+// the map repeats it. Throws std::invalid_argument for a map of fewer than 2 x 2 points.
+HeightField sampled_height_field(const HeightField &map, std::size_t nx, std::size_t ny, double dx, double dy);
+
+// The substrate of spec's lattice (its rq, correlation_length and seed unused) with its tops on `map`,
+// sampled by sampled_height_field. Throws std::invalid_argument as it and rough_substrate do.
+RoughSubstrate measured_substrate(const HeightField &map, const RoughnessSpec &spec);
+
 }  // namespace spreadmap::scene

@@ -158,3 +158,50 @@ TEST(SceneRoughSubstrate, ASphereRestsOnTheLayerAndDoesNotFallThrough) {
       EXPECT_EQ(state.vz[i], 0.0);
     }
 }
+
+// A measured surface (sampled_height_field): bilinear is exact for a plane inside one tile of the map;
+// on lattice points that fall on map points the field is the map there; a domain larger than the map
+// repeats it with the map's period.
+TEST(MeasuredSubstrate, ALatticeSamplesAPlaneExactlyAndRepeatsTheMapBeyondItsTile) {
+  const double step = 10 * um;
+  HeightField map{12, 8, step, step, {}};
+  for (std::size_t j = 0; j < map.ny; ++j)
+    for (std::size_t i = 0; i < map.nx; ++i) map.h.push_back(3e-3 * double(i) * step - 2e-3 * double(j) * step);
+  // lattice points at (k + 1/2) 25 um: inside the tile's first 11 x 7 cells, away from its wrap-around cell
+  const HeightField plane = sm::scene::sampled_height_field(map, 4, 2, 25 * um, 25 * um);
+  for (std::size_t iy = 0; iy < 2; ++iy)
+    for (std::size_t ix = 0; ix < 4; ++ix) {
+      const double x = (double(ix) + 0.5) * 25 * um, y = (double(iy) + 0.5) * 25 * um;
+      EXPECT_NEAR(plane.h[iy * 4 + ix], 3e-3 * x - 2e-3 * y, 1e-18) << ix << ", " << iy;
+    }
+
+  // spheres of 20 um on a map of 10 um spacing: every centre on a map point; 3 tiles along x
+  HeightField wave{6, 4, step, step, {}};
+  for (std::size_t j = 0; j < wave.ny; ++j)
+    for (std::size_t i = 0; i < wave.nx; ++i)
+      wave.h.push_back(5 * um * std::sin(2 * M_PI * double(i) / 6) + 1 * um * double(j));
+  const HeightField tiled = sm::scene::sampled_height_field(wave, 9, 2, 20 * um, 20 * um);
+  for (std::size_t iy = 0; iy < 2; ++iy)
+    for (std::size_t ix = 0; ix < 9; ++ix) {
+      const std::size_t i = (2 * ix + 1) % 6, j = 2 * iy + 1;  // the map point under the centre
+      EXPECT_NEAR(tiled.h[iy * 9 + ix], wave.h[j * 6 + i], 1e-18) << ix << ", " << iy;
+    }
+  for (std::size_t ix = 0; ix + 3 < 9; ++ix) EXPECT_NEAR(tiled.h[ix], tiled.h[ix + 3], 1e-18) << "period 60 um";
+
+  // the spheres stand on their tops as on a random field: lowest on the plate, mean plane the tops' mean
+  sm::scene::RoughnessSpec spec;
+  spec.sphere_diameter = 20 * um, spec.length = 180 * um, spec.width = 40 * um;
+  const auto substrate = sm::scene::measured_substrate(wave, spec);
+  ASSERT_EQ(substrate.z.size(), 18u);
+  double lowest = 1, mean = 0;
+  for (std::size_t k = 0; k < 18; ++k) {
+    lowest = std::min(lowest, substrate.z[k] - substrate.radius);
+    mean += (substrate.z[k] + substrate.radius) / 18;
+    EXPECT_NEAR(substrate.z[k] + substrate.radius - (substrate.z[0] + substrate.radius), tiled.h[k] - tiled.h[0],
+                1e-18);
+  }
+  EXPECT_NEAR(lowest, 0.0, 1e-18);
+  EXPECT_NEAR(substrate.mean_top, mean, 1e-18);
+  EXPECT_THROW(sm::scene::sampled_height_field(HeightField{1, 4, step, step, std::vector<double>(4)}, 2, 2, step, step),
+               std::invalid_argument);
+}

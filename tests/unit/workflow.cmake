@@ -6,5 +6,7 @@ spreadmap_test(unit scene_model SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_scene
 spreadmap_test(unit powder SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_powder_test.cpp LIBS spreadmap_workflow)
 add_dependencies(test_unit_powder plugin_contact_hooke_slider plugin_contact_hertz_mindlin plugin_spreader_roller)
 # scene.substrate.roughness: the key, its refusals, and the case set-up's fixed spheres on the plate.
-spreadmap_test(unit roughness SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_roughness_test.cpp LIBS spreadmap_workflow)
+# scene.substrate.height_map: its CSV file, its refusals, the substrate's tops on the map.
+spreadmap_test(unit roughness SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_roughness_test.cpp
+               ${CMAKE_CURRENT_LIST_DIR}/workflow_height_map_test.cpp LIBS spreadmap_workflow)
 add_dependencies(test_unit_roughness plugin_contact_hooke_slider plugin_spreader_roller)

@@ -106,7 +106,8 @@ TEST(Roughness, BadValuesAreRefusedWithFileLineKeyAndFix) {
   }
   std::string errors;  // fixed spheres step on the CPU only
   EXPECT_FALSE(resolve(rough + "backend: cuda\n", errors).has_value());
-  EXPECT_TRUE(contains(errors, "scene.yaml:3:10: scene.backend: backend: cuda cannot run a rough substrate")) << errors;
+  EXPECT_TRUE(contains(errors, "scene.yaml:3:10: scene.backend: backend: cuda cannot run a substrate of spheres"))
+      << errors;
   EXPECT_TRUE(contains(errors, "set backend: auto or cpu, or remove substrate.roughness")) << errors;
   errors.clear();  // a misspelt section is pointed at the right name
   EXPECT_FALSE(resolve("preset: quick\nsubstrate: {roughnes: {rq: 20 um}}\n", errors).has_value());

@@ -89,6 +89,14 @@ void fields(R &r, F &&f) {
   f("sphere_diameter", r.sphere_diameter);
 }
 
+template <class H, class F>
+requires std::same_as<std::remove_const_t<H>, HeightMap>
+void fields(H &h, F &&f) {
+  f("file", h.file);
+  f("digest", h.digest);
+  f("sphere_diameter", h.sphere_diameter);
+}
+
 struct Writer {
   json &out;
   template <class T> void operator()(const char *key, const T &value) { out[key] = value; }
@@ -181,6 +189,7 @@ json to_json(const Scene &s) {
   out["contact"] = {{"use", s.contact.use}, {"params", s.contact.params}};
   out["substrate"] = {{"law", s.substrate.law}};
   if (s.substrate.roughness) out["substrate"]["roughness"] = written(*s.substrate.roughness);  // flat: absent
+  if (s.substrate.height_map) out["substrate"]["height_map"] = written(*s.substrate.height_map);
   out["spreader"] = {{"use", s.spreader.use}, {"params", s.spreader.params}, {"law", s.spreader.law}};
   if (s.layers.count > 1) out["layers"] = written(s.layers);  // absent for one layer: hashes unchanged
   return out;
@@ -200,6 +209,7 @@ Scene scene_from_json(const json &in, const std::string &source) {
   Reader substrate = top.section("substrate");
   s.substrate.law = substrate.object("law");
   if (substrate.has("roughness")) s.substrate.roughness = read_section<Roughness>(substrate, "roughness");
+  if (substrate.has("height_map")) s.substrate.height_map = read_section<HeightMap>(substrate, "height_map");
   substrate.no_other_keys();
   Reader spreader = top.section("spreader");
   spreader("use", s.spreader.use);

@@ -63,12 +63,23 @@ struct Roughness {
   double sphere_diameter = 0;     // m; 0 = the powder's D50 by volume (after coarse graining)
 };
 
-// The contact law between the particles and the substrate plane, and the substrate's roughness:
-// absent (the default) for the flat plate, and then out of the scene's JSON form, so the hashes of
-// flat scenes stand.
+// A measured substrate (scene.substrate.height_map): the same layer of fixed spheres, their tops on
+// a surface read from a CSV file (workflow/scene/height_map_file.hpp). The file is read again where
+// the substrate is built; its digest, taken when the scene was resolved, makes a changed file a
+// different scene (and is checked where the file is read).
+struct HeightMap {
+  std::string file;            // absolute path
+  std::string digest;          // stable_hash of the file's text
+  double sphere_diameter = 0;  // m; 0 = the powder's D50 by volume (after coarse graining)
+};
+
+// The contact law between the particles and the substrate plane, and the substrate's roughness or
+// measured surface (at most one): absent (the default) for the flat plate, and then out of the
+// scene's JSON form, so the hashes of flat scenes stand.
 struct Substrate {
   nlohmann::json law = nlohmann::json::object();
   std::optional<Roughness> roughness;
+  std::optional<HeightMap> height_map;
 };
 
 // Spreading layer upon layer: after each pass the platform drops by `thickness`, a new heap of the

@@ -12,6 +12,7 @@
 #include "workflow/scene/powder_sizes.hpp"
 #include "workflow/scene/presets.hpp"
 #include "workflow/scene/size_table.hpp"
+#include "workflow/scene/substrate_height_map.hpp"
 #include "workflow/scene/substrate_roughness.hpp"
 
 namespace spreadmap {
@@ -295,16 +296,24 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
         validate_params(schema, known_only(p["substrate"], schema), "<preset>", "scene.substrate", diag, {}, false);
     const YAML::Node user_substrate = user["substrate"];
     if (user_substrate) {
-      auto mine = validate_params(schema, user_substrate, file, "scene.substrate", diag, {"roughness"}, false);
+      auto mine =
+          validate_params(schema, user_substrate, file, "scene.substrate", diag, {"roughness", "height_map"}, false);
       for (auto &[k, v] : mine.items()) sub[k] = v;
     }
     nlohmann::json sub_law = pp;
     for (auto &[k, v] : sub.items()) sub_law[k] = v;
     scene["substrate"] = {{"law", sub_law}};
-    if (user_substrate && user_substrate.IsMap() && user_substrate["roughness"])  // absent: the flat plate
+    const bool substrate_map = user_substrate && user_substrate.IsMap();  // neither key: the flat plate
+    if (substrate_map && user_substrate["roughness"] && user_substrate["height_map"])
+      diag.error(Location::of(file, user_substrate["height_map"]), "scene.substrate.height_map",
+                 "a substrate is either rough (roughness: a random surface) or measured (height_map), not both",
+                 "remove roughness or height_map");
+    else if (substrate_map && user_substrate["roughness"])
       scene["substrate"]["roughness"] =
           validate_params({roughness_params, std::size(roughness_params)}, user_substrate["roughness"], file,
                           "scene.substrate.roughness", diag);
+    else if (substrate_map && user_substrate["height_map"])
+      scene["substrate"]["height_map"] = resolve_height_map(user_substrate["height_map"], file, scene_dir, diag);
     if (geo) {
       // spreader section: geometry keys go to the geometry, law keys to the particle-spreader law
       const auto gschema = SchemaView::of(*geo->descriptor);

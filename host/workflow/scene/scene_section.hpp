@@ -10,9 +10,11 @@
 //             heap_from, heap_to, heap_top, settle_time, settle_speed}
 //   time     {step, safety, skin, relax, checkpoint_interval, snapshots, overlap_limit}
 //   contact  {use, params{...}}                  particle-particle law
-//   substrate{law{...}, roughness{rq, correlation_length, sphere_diameter}}
+//   substrate{law{...}, roughness{rq, correlation_length, sphere_diameter}
+//             | height_map{file, digest, sphere_diameter}}
 //                                                the same law with the substrate's overrides; roughness
-//                                                only for a rough substrate (absent: the flat plate)
+//                                                or height_map only for a substrate of spheres (neither:
+//                                                the flat plate)
 //   spreader {use, params{...}, law{...}}        geometry and the particle-spreader law
 //   layers   {count, thickness}                  spreading layer upon layer (count 1: one pass)
 #pragma once

@@ -11,6 +11,7 @@
 #include "analysis/table.hpp"
 #include "core/suggest.hpp"
 #include "core/units.hpp"
+#include "workflow/scene/csv_columns.hpp"
 
 namespace spreadmap {
 namespace {
@@ -28,28 +29,6 @@ struct Row {
   std::map<std::string, Cell> cells;
   Location at;
 };
-
-std::string trim(const std::string &s) {
-  const auto b = s.find_first_not_of(" \t"), e = s.find_last_not_of(" \t");
-  return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
-
-// "from [um]" -> {"from", "um"}, "fraction" -> {"fraction", ""}.
-std::pair<std::string, std::string> name_and_unit(const std::string &header) {
-  const auto open = header.find_first_of("[(");
-  if (open == std::string::npos) return {lower(trim(header)), ""};
-  const auto close = header.find_first_of("])", open);
-  return {lower(trim(header.substr(0, open))),
-          trim(header.substr(open + 1, close == std::string::npos ? std::string::npos : close - open - 1))};
-}
-
-bool is_bare_number(const std::string &text) {
-  try {
-    return !parse_quantity(text).has_unit;
-  } catch (const std::invalid_argument &) {
-    return false;
-  }
-}
 
 void unknown_column(const std::string &name, const Location &at, Diagnostics &diag) {
   const std::string near = closest(name, known_columns);
@@ -103,7 +82,7 @@ std::optional<std::vector<Row>> rows_from_csv(const std::string &path, Diagnosti
   bool ok = true;
   std::vector<std::pair<std::string, std::string>> columns;
   for (const auto &header : table.columns()) {
-    columns.push_back(name_and_unit(header));
+    columns.push_back(column_name_and_unit(header));
     const auto &[name, unit] = columns.back();
     if (std::find(known_columns.begin(), known_columns.end(), name) == known_columns.end()) {
       unknown_column(name, Location{path, 1, 0}, diag);
@@ -125,7 +104,7 @@ std::optional<std::vector<Row>> rows_from_csv(const std::string &path, Diagnosti
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const auto &[name, unit] = columns[c];
       const std::string &text = table.text(r, c);
-      row.cells[name] = {!unit.empty() && is_bare_number(text) ? text + " " + unit : text, row.at};
+      row.cells[name] = {with_column_unit(text, unit), row.at};
     }
     rows.push_back(std::move(row));
   }

@@ -9,13 +9,15 @@
 #include "core/schema.hpp"
 #include "workflow/scene/layers_check.hpp"
 #include "workflow/scene/powder_sizes.hpp"
+#include "workflow/scene/substrate_height_map.hpp"
 #include "workflow/simulate/coarse_grain.hpp"
 
 namespace spreadmap {
 
 double substrate_sphere_diameter(const Scene &scene) {
-  const Roughness &r = scene.substrate.roughness.value();
-  if (r.sphere_diameter > 0) return r.sphere_diameter;
+  const Substrate &sub = scene.substrate;
+  const double given = sub.roughness ? sub.roughness->sphere_diameter : sub.height_map.value().sphere_diameter;
+  if (given > 0) return given;
   return size_distribution(scene.powder).quantile(0.5, scene::FractionBasis::volume);
 }
 
@@ -23,13 +25,19 @@ std::uint64_t substrate_seed(const Scene &scene) {
   return static_cast<std::uint64_t>(scene.powder.seed) + 0x9e3779b97f4a7c15ull;  // wraps: a different stream
 }
 
+bool has_substrate_spheres(const Scene &scene) {
+  return scene.substrate.roughness.has_value() || scene.substrate.height_map.has_value();
+}
+
 namespace {
 
+// The lattice (and, for a rough substrate, the field's statistics and seed) of the scene's substrate.
 scene::RoughnessSpec roughness_spec(const Scene &scene) {
-  const Roughness &r = scene.substrate.roughness.value();
   scene::RoughnessSpec spec;
-  spec.rq = r.rq;
-  spec.correlation_length = r.correlation_length;
+  if (const auto &r = scene.substrate.roughness) {
+    spec.rq = r->rq;
+    spec.correlation_length = r->correlation_length;
+  }
   spec.sphere_diameter = substrate_sphere_diameter(scene);
   spec.length = scene.domain.length;
   spec.width = scene.domain.width;
@@ -43,6 +51,8 @@ double highest_top(const scene::RoughSubstrate &s) { return *std::max_element(s.
 }  // namespace
 
 std::optional<scene::RoughSubstrate> rough_substrate_of(const Scene &scene) {
+  if (scene.substrate.height_map)
+    return scene::measured_substrate(height_map_of(*scene.substrate.height_map), roughness_spec(scene));
   if (!scene.substrate.roughness) return std::nullopt;
   return scene::rough_substrate(roughness_spec(scene));
 }
@@ -54,26 +64,28 @@ double substrate_level(const Scene &scene) {
 
 void check_roughness(const Scene &given, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
                      Diagnostics &diag) {
-  if (!given.substrate.roughness) return;
-  const YAML::Node section = user["substrate"]["roughness"];
+  if (!has_substrate_spheres(given)) return;
+  const bool measured = given.substrate.height_map.has_value();
+  const char *const name = measured ? "height_map" : "roughness";
+  const YAML::Node section = user["substrate"][name];
   auto where = [&](const char *key) {
     if (section.IsMap() && section[key]) return Location::of(file, section[key]);
     return Location::of(file, section);
   };
-  const std::string key = "scene.substrate.roughness";
+  const std::string key = std::string("scene.substrate.") + name;
   if (given.backend == "cuda") {
-    diag.error(
-        Location::of(file, user["backend"] ? user["backend"] : section), "scene.backend",
-        "backend: cuda cannot run a rough substrate: its spheres are fixed particles, which step on the CPU only",
-        "set backend: auto or cpu, or remove substrate.roughness");
+    diag.error(Location::of(file, user["backend"] ? user["backend"] : section), "scene.backend",
+               "backend: cuda cannot run a substrate of spheres: they are fixed particles, which step on the CPU only",
+               fmt::format("set backend: auto or cpu, or remove substrate.{}", name));
     return;
   }
   const Scene scene = coarse_grained(given, registry);  // the sizes the engine runs
-  const Roughness &r = *scene.substrate.roughness;
   const Domain &domain = scene.domain;
   const double d = substrate_sphere_diameter(scene);
-  const std::string diameter = r.sphere_diameter > 0 ? fmt::format("{:g} um", d * 1e6)
-                                                     : fmt::format("{:g} um (the powder's D50 by volume)", d * 1e6);
+  const bool given_diameter =
+      measured ? scene.substrate.height_map->sphere_diameter > 0 : scene.substrate.roughness->sphere_diameter > 0;
+  const std::string diameter =
+      given_diameter ? fmt::format("{:g} um", d * 1e6) : fmt::format("{:g} um (the powder's D50 by volume)", d * 1e6);
   if (d > domain.length || d > domain.width) {
     diag.error(where("sphere_diameter"), key + ".sphere_diameter",
                fmt::format("the sphere diameter {} does not fit the domain ({:g} x {:g} mm)", diameter,
@@ -81,17 +93,18 @@ void check_roughness(const Scene &given, const YAML::Node &user, const std::stri
                fmt::format("give sphere_diameter <= {:g} um", std::min(domain.length, domain.width) * 1e6));
     return;
   }
-  if (r.correlation_length < 2 * d) {
+  const double xi = measured ? 0.0 : scene.substrate.roughness->correlation_length;
+  if (!measured && xi < 2 * d) {
     diag.error(where("correlation_length"), key + ".correlation_length",
                fmt::format("{:g} um is below 2 sphere diameters (2 x {}): the lattice of spheres cannot carry it",
-                           r.correlation_length * 1e6, diameter),
+                           xi * 1e6, diameter),
                fmt::format("give correlation_length >= {:g} um, or a smaller sphere_diameter", 2 * d * 1e6));
     return;
   }
-  if (r.correlation_length > domain.length) {
+  if (!measured && xi > domain.length) {
     diag.error(where("correlation_length"), key + ".correlation_length",
-               fmt::format("{:g} mm is longer than the domain ({:g} mm): the surface would be one slope",
-                           r.correlation_length * 1e3, domain.length * 1e3),
+               fmt::format("{:g} mm is longer than the domain ({:g} mm): the surface would be one slope", xi * 1e3,
+                           domain.length * 1e3),
                fmt::format("give correlation_length <= {:g} mm", domain.length * 1e3));
     return;
   }
@@ -116,16 +129,18 @@ void check_roughness(const Scene &given, const YAML::Node &user, const std::stri
   if (!gap.is_number()) {
     diag.error(where("rq"), key,
                fmt::format("the spreader '{}' has no gap to hold above the substrate's mean plane", scene.spreader.use),
-               "use a spreader plugin with a gap parameter (spreadmap plugins spreader lists them) or remove "
-               "substrate.roughness");
+               fmt::format("use a spreader plugin with a gap parameter (spreadmap plugins spreader lists them) or "
+                           "remove substrate.{}",
+                           name));
     return;
   }
   if (above_mean >= gap.get<double>())
-    diag.error(where("rq"), key + ".rq",
+    diag.error(where(measured ? "file" : "rq"), key + (measured ? ".file" : ".rq"),
                fmt::format("the substrate's highest sphere reaches {:.3g} um above its mean plane, not below the "
                            "spreader's gap ({:g} um): the spreader would strike the substrate",
                            above_mean * 1e6, gap.get<double>() * 1e6),
-               "use a smaller rq or a larger spreader gap");
+               measured ? "give a larger spreader gap (or a map of smaller heights)"
+                        : "use a smaller rq or a larger spreader gap");
   const double later_layers = double(scene.layers.count - 1) * scene.layers.thickness;
   const double heap = estimated_heap_height(scene), needed = peak + later_layers + heap;
   if (needed > domain.height)

@@ -26,27 +26,31 @@ namespace spreadmap {
 // Above this many spheres the substrate is refused: the engine would spend its time on the substrate.
 inline constexpr double max_substrate_spheres = 2e6;
 
-// The spheres' diameter: roughness.sphere_diameter, or the powder's D50 by volume when that is 0 [m].
+// Whether the substrate is a layer of fixed spheres (roughness or height_map), not the flat plate.
+bool has_substrate_spheres(const Scene &scene);
+
+// The spheres' diameter: roughness's or height_map's sphere_diameter, or the powder's D50 by volume
+// when that is 0 [m]. The scene must have substrate spheres.
 // `scene` is the scene the engine runs (coarse graining applied, as cases/cNNN/scene.json keeps it).
 double substrate_sphere_diameter(const Scene &scene);
 
 // The substrate's seed: powder.seed offset by a constant.
 std::uint64_t substrate_seed(const Scene &scene);
 
-// The rough substrate of the scene the engine runs; empty for the flat plate. Deterministic: the same
-// scene gives the same spheres. Throws std::invalid_argument as scene::rough_substrate does (a
-// validated scene never does).
+// The substrate of spheres of the scene the engine runs (rough or measured: height_map); empty for the
+// flat plate. Deterministic: the same scene gives the same spheres. Throws std::invalid_argument as
+// scene::rough_substrate does (a validated scene never does), InputError as height_map_of does.
 std::optional<scene::RoughSubstrate> rough_substrate_of(const Scene &scene);
 
 // The plane the spreader's gap and the layer's heights are measured from [m]: z = 0 for the flat plate,
 // the rough substrate's mean plane (its mean_top) otherwise.
 double substrate_level(const Scene &scene);
 
-// The checks of substrate.roughness that need the whole scene, each naming the file, the line and the
-// key: a sphere diameter that fits the domain, a correlation length of at least 2 sphere diameters
-// and not beyond the domain, a substrate of at most max_substrate_spheres spheres, peaks below the
-// spreader's gap, a domain tall enough for the peaks, the further layers and the heap fed on top,
-// and a backend that can run fixed spheres (not an explicit cuda).
+// The checks of substrate.roughness (or height_map, where they apply) that need the whole scene, each naming the file,
+// the line and the key: a sphere diameter that fits the domain, a correlation length of at least 2 sphere diameters and
+// not beyond the domain, a substrate of at most max_substrate_spheres spheres, peaks below the spreader's gap, a domain
+// tall enough for the peaks, the further layers and the heap fed on top, and a backend that can run fixed spheres (not
+// an explicit cuda).
 void check_roughness(const Scene &scene, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
                      Diagnostics &diag);
 

@@ -375,7 +375,8 @@ std::string heap_hash(const Scene &scene, PluginRegistry &registry) {
                       {"contact", all["contact"]}, {"substrate", all["substrate"]},
                       {"gravity", all["gravity"]}, {"precision", all["precision"]},
                       {"time", all["time"]}};
-  s["substrate"].erase("roughness");  // the heap settles on the plate and is fed onto a rough substrate after
+  s["substrate"].erase("roughness");  // the heap settles on the plate and is fed onto a substrate of spheres after
+  s["substrate"].erase("height_map");
   for (const char *k : {"relax", "checkpoint_interval", "snapshots"}) s["time"].erase(k);
   // The spreader as the heap sees it: its law and its body at rest, as it describes itself (its
   // motion, e.g. a speed or a rotation, does not change the heap).
