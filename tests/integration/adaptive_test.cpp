@@ -1,7 +1,8 @@
 // design: adaptive in a workflow: the 3 x 3 space-filling start, then the GP's choices up to the
 // budget; every case characterised; a second run recomputes nothing and chooses the same cases
 // (the engine is deterministic, so the GP sees the same data). With two fidelities: the cheap
-// cases' scenes carry the cheap keys, metrics.csv a fidelity input, and the map holds it at 1.
+// cases' scenes carry the cheap keys, metrics.csv a fidelity input, and the map holds it at 1 (its
+// --grid counts U and omega only).
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -99,6 +100,15 @@ TEST(AdaptiveDesign, TwoFidelitiesRunCheapCasesOnTheirSceneAndMapTheExpensiveOne
     if (!o.value("found", false)) continue;
     EXPECT_EQ(o["inputs"]["fidelity"], 1.0);
   }
+
+  // --grid counts the mapped inputs, U and omega: the fidelity takes no count
+  const fs::path coarse = dir / "map_21x11";
+  const std::string model = (dir / "train" / "gp" / "model.json").string();
+  ASSERT_EQ(run("map " + model + " --grid 21x11 --out " + coarse.string(), out), 0) << out;
+  const auto small = spreadmap::analysis::Table::read_csv((coarse / "map.csv").string());
+  EXPECT_EQ(small.rows(), 21u * 11u);
+  EXPECT_NE(run("map " + model + " --grid 21x11x2 --out " + coarse.string(), out), 0);
+  EXPECT_NE(out.find("the map has 2 inputs, the grid gives 3"), std::string::npos) << out;
 
   ASSERT_EQ(run("run " + wf + " --out " + dir.string(), out), 0) << out;
   EXPECT_NE(out.find("(0 run now, 11 finished before)"), std::string::npos) << out;

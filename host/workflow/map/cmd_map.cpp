@@ -72,7 +72,7 @@ int cmd_map(int argc, char **argv) {
   c.apply();
   const auto file = read_model(model);
   MapRequest rq;
-  if (!grid.empty()) rq.points = parse_grid_points(grid, file.inputs.size());
+  if (!grid.empty()) rq.points = parse_grid_points(grid, mapped_inputs(file));
   rq.rq_max = roughness_list(rq_max);
   auto &registry = PluginRegistry::global();
   const auto map = make_process_map(registry, file, rq);
@@ -107,7 +107,7 @@ int cmd_query(int argc, char **argv) {
   if (vm.count("best")) {
     if (rq_max.empty()) throw InputError("error: --best needs --rq-max, e.g. --rq-max 110um");
     MapRequest rq;
-    if (!grid.empty()) rq.points = parse_grid_points(grid, file.inputs.size());
+    if (!grid.empty()) rq.points = parse_grid_points(grid, mapped_inputs(file));
     rq.rq_max = roughness_list(rq_max);
     for (const auto &o : make_process_map(registry, file, rq).optima) print_optimum(o, file);
     return 0;

@@ -75,7 +75,7 @@ class MapStage : public Stage {
                        model_);
     const auto file = analysis::load_model_json(model_json.string());
     MapRequest rq;
-    if (!grid_.empty()) rq.points = parse_grid_points(grid_, file.inputs.size());
+    if (!grid_.empty()) rq.points = parse_grid_points(grid_, mapped_inputs(file));
     rq.rq_max = rq_max_;
     const auto map = make_process_map(ctx.registry, file, rq);
     std::unique_ptr<analysis::Table> data;

@@ -26,12 +26,9 @@ std::optional<std::size_t> output_index(const analysis::ModelFile &file, const s
 
 MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &file, const MapRequest &rq) {
   const auto model = load_model(registry, file);
-  // A model of two fidelities answers for the expensive one: its fidelity input is held at 1 and the
-  // default resolution is that of the other inputs.
-  std::size_t mapped = 0;
-  for (const auto &v : file.inputs) mapped += v.name != analysis::fidelity_input;
-  const bool by_default = rq.points.empty();
-  auto points = by_default ? analysis::default_grid_points(mapped) : rq.points;
+  // A model of two fidelities answers for the expensive one: its fidelity input is held at 1, and
+  // the grid's points are those of the other inputs.
+  const auto points = rq.points.empty() ? analysis::default_grid_points(mapped_inputs(file)) : rq.points;
   std::vector<analysis::Axis> axes;
   for (std::size_t i = 0, k = 0; i < file.inputs.size(); ++i) {
     const auto &v = file.inputs[i];
@@ -39,7 +36,7 @@ MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &
       axes.push_back({v.name, 1.0, 1.0, 1});
       continue;
     }
-    const std::size_t n = points.at(by_default ? k++ : i);
+    const std::size_t n = points.at(k++);
     axes.push_back({v.name, v.min, v.max, v.min == v.max ? 1 : n});
   }
   std::vector<std::string> outputs;
@@ -82,6 +79,12 @@ void write_process_map(const MapResult &m, const analysis::ModelFile &file, cons
                          training ? *training : analysis::Table());
 }
 
+std::size_t mapped_inputs(const analysis::ModelFile &file) {
+  std::size_t n = 0;
+  for (const auto &v : file.inputs) n += v.name != analysis::fidelity_input;
+  return n;
+}
+
 std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t inputs) {
   std::vector<std::size_t> out;
   std::size_t pos = 0;
@@ -101,7 +104,7 @@ std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t 
   }
   if (out.size() != inputs)
     throw InputError(
-        fmt::format("error: --grid {}: the model has {} inputs, the grid gives {}", text, inputs, out.size()));
+        fmt::format("error: --grid {}: the map has {} inputs, the grid gives {}", text, inputs, out.size()));
   return out;
 }
 

@@ -37,7 +37,9 @@ MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &
 void write_process_map(const MapResult &map, const analysis::ModelFile &file, const std::filesystem::path &dir,
                        const analysis::Table *training, bool figures);
 
-// "101x81" -> {101, 81}. Throws InputError.
+// The inputs a map spans: the model's, less a two-fidelity model's fidelity (held at 1).
+std::size_t mapped_inputs(const analysis::ModelFile &file);
+// "101x81" -> {101, 81}, one count per mapped input (`inputs` of them). Throws InputError.
 std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t inputs);
 // Index of an output by name (case-insensitive): vs / rq.
 std::optional<std::size_t> output_index(const analysis::ModelFile &file, const std::string &name);
