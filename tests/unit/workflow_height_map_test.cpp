@@ -37,7 +37,7 @@ class HeightMap : public ::testing::Test {
   // The map of `text`, and every error it gave, one per line.
   std::optional<sm::scene::HeightField> read(const std::string &text, std::string &errors) {
     sm::Diagnostics diag;
-    auto map = sm::read_height_map(write("map.csv", text), "scene.substrate.height_map", diag);
+    auto map = sm::parse_height_map(text, write("map.csv", text), "scene.substrate.height_map", diag);
     for (const auto &e : diag.errors()) errors += e + "\n";
     return map;
   }

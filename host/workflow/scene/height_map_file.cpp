@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "analysis/table.hpp"
-#include "core/files.hpp"
 #include "core/suggest.hpp"
 #include "core/units.hpp"
 #include "workflow/scene/csv_columns.hpp"
@@ -69,12 +68,12 @@ std::string mm(double v) { return fmt::format("{:.6g} mm", v * 1e3); }
 
 }  // namespace
 
-std::optional<scene::HeightField> read_height_map(const std::filesystem::path &csv, const std::string &key,
-                                                  Diagnostics &diag) {
+std::optional<scene::HeightField> parse_height_map(const std::string &text, const std::filesystem::path &csv,
+                                                   const std::string &key, Diagnostics &diag) {
   const std::string path = csv.string();
   analysis::Table table;
   try {
-    table = analysis::Table::parse_csv(without_comments(read_text(csv)), path);
+    table = analysis::Table::parse_csv(without_comments(text), path);
   } catch (const std::exception &e) {
     diag.error(fmt::format("error: {}: {}\n  {}", e.what(), key, file_shape));
     return std::nullopt;

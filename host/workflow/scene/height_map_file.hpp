@@ -24,9 +24,10 @@ namespace spreadmap {
 inline constexpr double grid_tolerance = 1e-3;  // of a spacing
 inline constexpr double height_map_max_points = 4e6;
 
-// The grid of the CSV file `csv` (heights in m, h[iy * nx + ix] from the smallest x and y); nullopt
-// with every problem reported to `diag` as file:line, `key` and the fix.
-std::optional<scene::HeightField> read_height_map(const std::filesystem::path &csv, const std::string &key,
-                                                  Diagnostics &diag);
+// The grid of the CSV text `text`, read from the file `csv` (heights in m, h[iy * nx + ix] from the
+// smallest x and y); nullopt with every problem reported to `diag` as file:line, `key` and the fix.
+// The caller reads the file once and may hash the same text (substrate_height_map.hpp).
+std::optional<scene::HeightField> parse_height_map(const std::string &text, const std::filesystem::path &csv,
+                                                   const std::string &key, Diagnostics &diag);
 
 }  // namespace spreadmap

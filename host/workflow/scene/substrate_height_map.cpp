@@ -43,9 +43,10 @@ nlohmann::json resolve_height_map(const YAML::Node &node, const std::string &sce
                "a height map's name is relative to the folder of the file that names it");
     return nullptr;
   }
-  if (!read_height_map(csv, key, diag)) return nullptr;
+  const std::string text = read_text(csv);
+  if (!parse_height_map(text, csv, key, diag)) return nullptr;
   out["file"] = std::filesystem::absolute(csv).lexically_normal().string();
-  out["digest"] = stable_hash(read_text(csv));
+  out["digest"] = stable_hash(text);
   return out;
 }
 
@@ -55,13 +56,14 @@ scene::HeightField height_map_of(const HeightMap &map) {
         fmt::format("{}: the height map {} is gone; put it back, or validate and run the workflow "
                     "again in a new run directory",
                     key, map.file));
-  if (stable_hash(read_text(map.file)) != map.digest)
+  const std::string text = read_text(map.file);
+  if (stable_hash(text) != map.digest)
     throw InputError(
         fmt::format("{}: the height map {} changed since its scene was resolved (digest {}); "
                     "restore it, or run the workflow again: a changed map is a different scene",
                     key, map.file, map.digest));
   Diagnostics diag;
-  auto field = read_height_map(map.file, key, diag);
+  auto field = parse_height_map(text, map.file, key, diag);
   diag.throw_if_any();
   return *field;
 }
