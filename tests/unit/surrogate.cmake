@@ -5,4 +5,4 @@ endif()
 spreadmap_test(unit surrogate_bpnn SOURCES ${CMAKE_CURRENT_LIST_DIR}/surrogate_bpnn_test.cpp LIBS bpnn_core spreadmap_sdk)
 spreadmap_test(unit surrogate_gp SOURCES ${CMAKE_CURRENT_LIST_DIR}/surrogate_gp_test.cpp LIBS gp_core spreadmap_sdk)
 spreadmap_test(unit analysis SOURCES ${CMAKE_CURRENT_LIST_DIR}/analysis_table_test.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/analysis_map_test.cpp ${CMAKE_CURRENT_LIST_DIR}/analysis_replicates_test.cpp LIBS spreadmap_analysis)
+  ${CMAKE_CURRENT_LIST_DIR}/analysis_map_test.cpp ${CMAKE_CURRENT_LIST_DIR}/replicate_summary_test.cpp LIBS spreadmap_analysis)

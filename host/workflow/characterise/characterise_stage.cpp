@@ -15,7 +15,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "analysis/replicates.hpp"
+#include "analysis/replicate_summary.hpp"
 #include "analysis/table.hpp"
 #include "core/error.hpp"
 #include "core/files.hpp"

@@ -7,7 +7,7 @@
 
 #include "analysis/cross_validation.hpp"
 #include "analysis/plugin_model.hpp"
-#include "analysis/replicates.hpp"
+#include "analysis/replicate_summary.hpp"
 #include "analysis/scores.hpp"
 #include "analysis/split.hpp"
 #include "core/error.hpp"

@@ -13,7 +13,7 @@
 #include <optional>
 
 #include "analysis/multifidelity.hpp"
-#include "analysis/replicates.hpp"
+#include "analysis/replicate_summary.hpp"
 #include "analysis/table.hpp"
 #include "core/error.hpp"
 #include "core/files.hpp"

@@ -1,4 +1,4 @@
-#include "replicates.hpp"
+#include "replicate_summary.hpp"
 
 #include <cmath>
 #include <map>

@@ -1,10 +1,10 @@
-// host/analysis/replicates: the per-point summary of replicated runs (mean and sample standard
+// host/analysis/replicate_summary: the per-point summary of replicated runs (mean and sample standard
 // deviation against hand values, undefined cells left out) and the known noise it gives a model.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "host/analysis/replicates.hpp"
+#include "host/analysis/replicate_summary.hpp"
 
 namespace sa = spreadmap::analysis;
 
