@@ -74,6 +74,10 @@ Simulation<Real>::Simulation(const Domain &domain, ContactLaw pair_law, Settings
   if (!(s.overlap_limit > 0) || s.check_every == 0)
     throw SetupError("settings: overlap_limit must be > 0 and check_every >= 1");
   if (s.sleep) {
+    if (law_range(pair_law) > 0)
+      throw SetupError(
+          "settings: sleep needs a particle-particle law that attracts touching particles only (a sleeping "
+          "sphere would be pulled across a gap without moving); turn sleep off or set hamaker_constant: 0");
     if (pair_law.ops->history > 0)
       throw SetupError(
           "settings: sleep needs a particle-particle law without history (the tangential springs of two "
@@ -207,6 +211,11 @@ template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wal
     throw SetupError(fmt::format("plane wall '{}': normal ({}, {}, {}) must be a finite non-zero vector", wall.name,
                                  wall.normal[0], wall.normal[1], wall.normal[2]));
   for (auto &c : wall.normal) c /= len;
+  if (law_range(wall.law) > 0 && (state_.settings.sleep || backend_))
+    throw SetupError(
+        fmt::format("plane wall '{}': its law attracts across a gap (hamaker_constant), which runs "
+                    "on the CPU without sleep only; turn sleep off and use the CPU backend",
+                    wall.name));
   PlaneSlot<Real> s;
   s.wall = std::move(wall);
   s.slot.history = s.wall.law.ops->history;
@@ -390,7 +399,9 @@ template <class Real> void Simulation<Real>::rebuild_list() {
     hi[2] = hz;
     r_max = rm;
   }
-  const double reach = 2 * r_max + state_.skin;
+  // pairs are listed as far apart as the law attracts across a gap, plus the skin
+  const double list_skin = state_.skin + law_range(state_.pair_law);
+  const double reach = 2 * r_max + list_skin;
   for (int a = 0; a < 3; ++a)
     if (state_.domain.periodic[a] && state_.domain.length(a) < 2 * reach)
       throw SetupError(
@@ -432,7 +443,7 @@ template <class Real> void Simulation<Real>::rebuild_list() {
       if (s.history) gather(s.hist, perm_, scratch_real_, s.history);
     });
   }
-  state_.list.build(p, grid, cell_start_, cell_sorted_, state_.domain, Real(state_.skin), state_.pair_law.ops->history,
+  state_.list.build(p, grid, cell_start_, cell_sorted_, state_.domain, Real(list_skin), state_.pair_law.ops->history,
                     state_.settings.pairs_once, state_.settings.sleep && asleep_ > 0 ? p.mobile.data() : nullptr);
   if (state_.settings.sleep) find_border();
   asleep_at_build_ = asleep_;
@@ -495,8 +506,9 @@ template <class Real> Particles<Real> Simulation<Real>::view() {
 }
 
 // The plane's overlap with every particle (kept for the overlap check) and the particles its law
-// must see: those touching it and those still holding history from an earlier contact (the law
-// clears it), in increasing order.
+// must see: those touching it (or within its law's range across a gap) and those still holding
+// history from an earlier contact (the law clears it), in increasing order. A particle beyond reach
+// gets the overlap -range (0 for a law of touching contacts), which the law reads as apart.
 template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot<Real> &plane) {
   auto &p = state_.particles;
   const Real point[3] = {Real(plane.wall.point[0]), Real(plane.wall.point[1]), Real(plane.wall.point[2])};
@@ -505,6 +517,7 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot<Real> &pla
   const unsigned history = s.history;
   const std::size_t n = p.size();
   const bool moving = plane.wall.velocity[0] != 0 || plane.wall.velocity[1] != 0 || plane.wall.velocity[2] != 0;
+  const Real floor = Real(0) - Real(law_range(plane.wall.law));
   const int max_threads = max_team_size();
   if (thread_index_.size() < std::size_t(max_threads)) thread_index_.resize(max_threads);
   int teams = 1;
@@ -515,11 +528,11 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot<Real> &pla
     const auto [lo, hi] = team_share(n, team);
     for (std::size_t i = lo; i < hi; ++i) {
       const Real overlap = plane_overlap(point, normal, p.x[i], p.y[i], p.z[i], p.r[i]);
-      s.overlap[i] = overlap > 0 ? overlap : Real(0);
+      s.overlap[i] = overlap > floor ? overlap : floor;
       bool held = false;
       for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
       // a sleeping particle on a wall at rest stays as it is: no need to evaluate it
-      if ((overlap > 0 || held) && (moving || p.mobile[i] != 0)) mine.push_back(static_cast<std::uint32_t>(i));
+      if ((overlap > floor || held) && (moving || p.mobile[i] != 0)) mine.push_back(static_cast<std::uint32_t>(i));
     }
   });
   plane.near.clear();
@@ -528,9 +541,9 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot<Real> &pla
 
 // A plane's law over every particle at once, its records written in place: while no particle
 // sleeps, the subset of plane_contacts would only add copies (the substrate touches a good part of
-// a heap). A particle apart from the plane gets overlap 0, which the law reads as no contact (it
-// clears any history). The normal and velocity records are the same for every particle: written
-// when they change, so that a step writes only the overlaps. Same bits as the subset.
+// a heap). A particle apart from the plane (beyond its law's range) gets overlap 0 (-range), which the
+// law reads as no contact (it clears any history). The normal and velocity records are the same for every particle:
+// written when they change, so that a step writes only the overlaps. Same bits as the subset.
 template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> &plane, const Particles<Real> &view) {
   auto &p = state_.particles;
   const Real point[3] = {Real(plane.wall.point[0]), Real(plane.wall.point[1]), Real(plane.wall.point[2])};
@@ -546,18 +559,21 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> 
     plane.records = records;
   }
   const unsigned history = s.history;
+  const double range = law_range(plane.wall.law);
+  const Real floor = Real(0) - Real(range);
   std::uint32_t touching = 0;
   run_team(this_thread_team(), [&](TeamSlot team) {
     const auto [lo, hi] = team_share(n, team);
     std::uint32_t mine = 0;
     with_simd([&] {
-      mine = plane_overlaps(point, normal, p.x.data(), p.y.data(), p.z.data(), p.r.data(), s.overlap.data(), lo, hi);
+      mine = plane_overlaps(point, normal, p.x.data(), p.y.data(), p.z.data(), p.r.data(), s.overlap.data(), lo, hi,
+                            floor);
     });
     // apart: the law still runs for a particle that holds history from this plane, to clear it
     for (std::size_t i = lo; i < hi && history > 0; ++i) {
       bool held = false;
       for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
-      mine += s.overlap[i] > 0 || !held ? 0u : 1u;
+      mine += s.overlap[i] > floor || !held ? 0u : 1u;
     }
 #pragma omp atomic
     touching += mine;
@@ -565,6 +581,7 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> 
   s.touched = touching > 0;
   if (!s.touched) return;
   WallContacts<Real> w = s.view(n);
+  w.gap = Real(range);
   if constexpr (std::is_same_v<Real, double>) plane.wall.law.ops->walls_f64(plane.wall.law.self, &view, &w);
   else plane.wall.law.ops->walls_f32(plane.wall.law.self, &view, &w);
 }
@@ -623,6 +640,7 @@ template <class Real> void Simulation<Real>::compute_forces(StepProfile *prof) {
     subset_.plane_records(pl.slot.overlap, normal, velocity);
     const Particles<Real> sv = subset_.particles(v);
     WallContacts<Real> sw = subset_.walls();
+    sw.gap = Real(law_range(pl.wall.law));
     subset_forces(pl.wall.law, sv, sw);
     subset_.scatter(p, pl.slot.overlap, pl.slot.hist);
     if (asleep_ > 0)  // only a moving wall lists sleeping particles: it wakes those it touches
@@ -859,8 +877,18 @@ template <class Real> void Simulation<Real>::prepare() {
   if (!state_.forces_valid) compute_forces();
 }
 
+template <class Real> bool Simulation<Real>::attracts_across_gap() const {
+  bool across = law_range(state_.pair_law) > 0;
+  for (const auto &pl : state_.planes) across = across || law_range(pl.wall.law) > 0;
+  return across;
+}
+
 template <class Real> void Simulation<Real>::set_backend(std::unique_ptr<StepBackend<Real>> backend) {
   if (backend && fixed_ > 0) throw SetupError("this scene has fixed particles: it steps on the CPU only");
+  if (backend && attracts_across_gap())
+    throw SetupError(
+        "this scene's contact law attracts across a gap (hamaker_constant): it steps on the CPU only; use "
+        "backend: cpu or set hamaker_constant: 0");
   sync_host();
   backend_ = std::move(backend);
   device_ahead_ = false;

@@ -54,6 +54,8 @@ template <class Real = double> class Simulation {
   void add_particles(ParticleSet set, double density = 0);
   static constexpr double fixed_mass_scale = 0x1p40;  // a power of two: the mass comes back exactly
   std::size_t fixed_count() const { return fixed_; }
+  // Whether the particle-particle law or a plane's attracts across a gap (steps on the CPU only).
+  bool attracts_across_gap() const;
   std::size_t size() const;  // the particles in the domain (arrays() also holds those leaving it)
   // The current state in the engine's current (cell-sorted) order, in double: the particles in the
   // domain (one that left it is removed at the next list build, and is not part of the state).

@@ -16,6 +16,9 @@ struct ContactLaw {
   const void *self = nullptr;
 };
 
+// How far across a gap a bound law attracts [m]; 0: touching contacts only.
+inline double law_range(const ContactLaw &law) { return law.ops && law.ops->range ? law.ops->range(law.self) : 0; }
+
 // An infinite plane. Particles on the side `normal` points to touch it when closer than their
 // radius. The point moves with `velocity` (a tangential velocity is a conveyor: the plane stays put
 // but drags particles through friction). Inactive walls exert nothing and keep no history.
@@ -34,17 +37,18 @@ template <class Real> SM_HD Real plane_overlap(const Real p[3], const Real n[3],
   return r - ((x - p[0]) * n[0] + (y - p[1]) * n[1] + (z - p[2]) * n[2]);
 }
 
-// The overlaps of particles [lo, hi) with a plane, 0 where apart, into `overlap`; returns how many
-// touch. One loop without a branch: it vectorises.
+// The overlaps of particles [lo, hi) with a plane into `overlap`, `floor` where not above it (0 for a
+// law of touching contacts, -range for one that attracts across a gap); returns how many are above.
+// One loop without a branch: it vectorises.
 template <class Real>
 std::uint32_t plane_overlaps(const Real p[3], const Real n[3], const Real *x, const Real *y, const Real *z,
-                             const Real *r, Real *overlap, std::size_t lo, std::size_t hi) {
+                             const Real *r, Real *overlap, std::size_t lo, std::size_t hi, Real floor) {
   std::uint32_t touching = 0;
 #pragma GCC ivdep
   for (std::size_t i = lo; i < hi; ++i) {
     const Real o = plane_overlap(p, n, x[i], y[i], z[i], r[i]);
-    overlap[i] = o > 0 ? o : Real(0);
-    touching += o > 0 ? 1u : 0u;
+    overlap[i] = o > floor ? o : floor;
+    touching += o > floor ? 1u : 0u;
   }
   return touching;
 }

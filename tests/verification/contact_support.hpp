@@ -177,6 +177,7 @@ template <class Law, class Real = double> class Integrator {
                            w_vy_.data(),
                            w_vz_.data(),
                            wall_hist_[k].data()};
+      w.gap = Real(1);  // the records hold every gap exactly: a law reaching across one sees it up to its range
       wall_loop(law_, p, w);
     }
   }

@@ -58,14 +58,17 @@ template <class Real> struct PairList {
 };
 
 // One wall contact per particle and wall, stored densely by particle index: particle i touches the
-// wall when overlap[i] > 0. normal points from the wall into the particle; (vx, vy, vz) is the wall's
-// surface velocity at the contact point. hist holds `history` values per particle for this wall.
+// wall when overlap[i] > 0; the records also hold gaps down to overlap = -gap (a law reaching across a
+// gap attracts there; gap 0: touching records only, any other value reads as apart). normal points from the wall into
+// the particle; (vx, vy, vz) is the wall's surface velocity at the contact point. hist holds `history` values per
+// particle for this wall.
 template <class Real> struct WallContacts {
   std::uint32_t n;
   Real *overlap;
   Real *nx, *ny, *nz;
   Real *vx, *vy, *vz;
   Real *hist;
+  Real gap = 0;  // [m]
 };
 
 }  // namespace spreadmap

@@ -9,7 +9,9 @@
 //   double damping_ratio(double m_eq, double r_eff) const;      zeta of its dashpot at that stiffness
 //   bool makes_torque() const;                    whether any tangential force or rolling torque exists
 //   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real>&, Real *hist) const;
-// and, with the cohesion part, `Cohesion cohesion` and force<Cohesive>() (see WithCohesion below).
+// and, with the cohesion part, `Cohesion cohesion` and force<Cohesive>() (see WithCohesion below). A law
+// whose cohesion reaches across a gap (cohesion.range > 0) is given pairs and wall records down to
+// overlap = -range, and must then return the attraction alone there (no repulsion, friction or history).
 // A law without history whose operator() decides per contact with selects (a ? b : c on computed
 // values) rather than branches runs on SIMD lanes in the CPU pair loop (pair_once.hpp).
 #pragma once
@@ -27,7 +29,7 @@ namespace spreadmap {
 // Kinematics of one contact, seen from particle i (the one receiving the force).
 template <class Real> struct ContactState {
   Vec3<Real> normal;  // unit, from the other body towards i
-  Real overlap;       // > 0 [m]
+  Real overlap;       // > 0 [m]; down to -range for a law that reaches across a gap
   Real v_n;           // (v_i - v_other) . normal at the contact point [m/s]; < 0 approaching
   Vec3<Real> v_t;     // tangential relative velocity of i at the contact point [m/s]
   Vec3<Real> w_rel;   // w_i - w_other [rad/s] (rolling resistance)
@@ -53,6 +55,7 @@ typedef struct sm_contact_ops_v1 {
   void (*pairs_f32)(const void *self, const Particles<float> *p, const PairList<float> *list);
   void (*walls_f64)(const void *self, const Particles<double> *p, const WallContacts<double> *w);
   void (*walls_f32)(const void *self, const Particles<float> *p, const WallContacts<float> *w);
+  double (*range)(const void *self);  // how far across a gap the law attracts [m]; 0: touching only
 } sm_contact_ops_v1;
 
 // Minimum-image separation along one axis.
@@ -72,7 +75,35 @@ SM_HD void accumulate(const ContactForce<Real> &f, const Vec3<Real> &normal, Rea
   torque += cross(normal * (-r_i), f.tangent) + f.torque;
 }
 
-// The kinematics of the touching pair (i, j) seen from i; d = x_i - x_j (minimum image), dist2 = |d|^2.
+// A law that may attract across a gap: a form with range() [m] (WithCohesion<Law, true>, below) or a
+// law with the cohesion part (cohesion.range). Any other form (WithCohesion<Law, false>, a law without
+// the part) is given touching contacts only, with the very instructions it always ran.
+template <class Law>
+concept ReachesAcrossGap = requires(const Law &law) {
+  { law.range() } -> std::convertible_to<double>;
+}
+|| requires(const Law &law) {
+  { law.cohesion.range } -> std::convertible_to<double>;
+};
+template <class Law> SM_HD double gap_range(const Law &law) {
+  if constexpr (requires { law.range(); }) return law.range();
+  else return law.cohesion.range;
+}
+
+// The centre distance below which particles i and j interact: touching, or within the law's range.
+template <class Law, class Real> SM_HD Real interaction_reach(const Law &law, Real r_i, Real r_j) {
+  if constexpr (ReachesAcrossGap<Law>) return r_i + r_j + Real(gap_range(law));
+  else return r_i + r_j;
+}
+
+// The overlap above which a wall record interacts: 0 (touching), or down to the gap the records hold
+// (WallContacts::gap) and the law reaches.
+template <class Law, class Real> SM_HD Real interaction_floor(const Law &law, const WallContacts<Real> &w) {
+  if constexpr (ReachesAcrossGap<Law>) return Real(0) - min(w.gap, Real(gap_range(law)));
+  else return Real(0);
+}
+
+// The kinematics of the pair (i, j) within reach, seen from i; d = x_i - x_j (minimum image), dist2 = |d|^2.
 template <class Real>
 SM_HD ContactState<Real> pair_contact_state(const Particles<Real> &p, std::uint32_t i, std::uint32_t j,
                                             const Vec3<Real> &d, Real dist2) {
@@ -104,7 +135,7 @@ SM_HD void pair_forces_on(const Law &law, const Particles<Real> &p, const PairLi
     const std::uint32_t j = list.nbr[k];
     Vec3<Real> d{wrap(p.x[i] - p.x[j], lx, p.periodic[0]), wrap(p.y[i] - p.y[j], ly, p.periodic[1]),
                  wrap(p.z[i] - p.z[j], lz, p.periodic[2])};
-    const Real dist2 = dot(d, d), reach = p.r[i] + p.r[j];
+    const Real dist2 = dot(d, d), reach = interaction_reach(law, p.r[i], p.r[j]);
     Real *h = Law::history ? list.hist + std::size_t(k) * Law::history : nullptr;
     if (dist2 >= reach * reach) {
       for (int q = 0; q < Law::history; ++q) h[q] = 0;  // apart: forget
@@ -133,7 +164,7 @@ template <class Law, class Real> void pair_loop(const Law &law, const Particles<
   parallel_for(p.team, p.n, [&](long long i) { pair_forces_on(law, p, list, static_cast<std::uint32_t>(i)); });
 }
 
-// The kinematics of particle i against a wall from its dense record (touching: overlap > 0).
+// The kinematics of particle i against a wall from its dense record (interacting: overlap above the floor).
 template <class Real>
 SM_HD ContactState<Real> wall_contact_state(const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t i) {
   ContactState<Real> c;
@@ -156,7 +187,7 @@ SM_HD ContactState<Real> wall_contact_state(const Particles<Real> &p, const Wall
 template <class Law, class Real>
 SM_HD void wall_force_on(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t i) {
   Real *h = Law::history ? w.hist + std::size_t(i) * Law::history : nullptr;
-  if (!(w.overlap[i] > 0)) {
+  if (!(w.overlap[i] > interaction_floor(law, w))) {
     for (int q = 0; q < Law::history; ++q) h[q] = 0;
     return;
   }
@@ -214,11 +245,12 @@ void wall_range(const Law &law, const Particles<Real> &p, const WallContacts<Rea
   using Batch = WallBatch<Law, Real>;
   Batch batch;
   int queued = 0;
+  const Real floor = interaction_floor(law, w);
   for (std::uint32_t k = lo; k < hi;) {
     const std::uint32_t stop = min(hi, k + std::uint32_t(Batch::chunk));
     for (; k < stop; ++k) {
       batch.i[queued] = k;
-      queued += w.overlap[k] > 0 ? 1 : 0;  // kept only when touching, without a branch
+      queued += w.overlap[k] > floor ? 1 : 0;  // kept only when interacting, without a branch
     }
     if (queued > Batch::capacity - Batch::chunk) {
       batch.flush(queued, law, p, w);
@@ -255,6 +287,7 @@ concept HasCohesion = requires(const Law &law) {
 template <class Law, bool Cohesive> struct WithCohesion {
   static constexpr int history = Law::history;
   Law law;
+  SM_HD double range() const requires Cohesive { return law.cohesion.range; }
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
     return law.template force<Cohesive>(c, hist);
   }
@@ -276,14 +309,18 @@ template <class Law> struct ContactOps {
   static double frequency(const void *s, double m, double r) { return law(s).natural_frequency(m, r); }
   static double zeta(const void *s, double m, double r) { return law(s).damping_ratio(m, r); }
   static int torque(const void *s) { return law(s).makes_torque() ? 1 : 0; }
+  static double range(const void *s) {
+    if constexpr (HasCohesion<Law>) return law(s).cohesion.range;
+    else return 0;
+  }
   template <class Real> static void pairs(const void *s, const Particles<Real> *p, const PairList<Real> *l) {
     in_loop_form(law(s), [&](const auto &form) { pair_loop(form, *p, *l); });
   }
   template <class Real> static void walls(const void *s, const Particles<Real> *p, const WallContacts<Real> *w) {
     in_loop_form(law(s), [&](const auto &form) { wall_loop(form, *p, *w); });
   }
-  static constexpr sm_contact_ops_v1 table = {Law::history,   &frequency,    &zeta,          &torque,
-                                              &pairs<double>, &pairs<float>, &walls<double>, &walls<float>};
+  static constexpr sm_contact_ops_v1 table = {Law::history,  &frequency,     &zeta,         &torque, &pairs<double>,
+                                              &pairs<float>, &walls<double>, &walls<float>, &range};
 };
 }  // namespace detail
 

@@ -228,10 +228,10 @@ template <class Real> SM_HD void clear_history(Real *hist, int n) {
   for (int q = 0; q < n; ++q) hist[q] = 0;
 }
 
-// ---------------------------------------------------------------- cohesion (in contact)
+// ---------------------------------------------------------------- cohesion (in contact and across a gap)
 
 // Schema entries of the cohesion part, one group added to every law's params[]. Each value stands on its
-// own (0 = none), so no combination is refused; the SJKR and surface-energy attractions add up if both are set.
+// own (0 = none), so no combination is refused; the attractions add up where several are set.
 // k_c's range ends where the Hooke laws' contact of two 200 um spheres would collapse (see outweighs());
 // it covers the values used with LIGGGHTS' cohesion sjkr (1e4 to 3e5 J/m^3).
 inline constexpr sm_param_v1 param_cohesion_energy_density =
@@ -242,32 +242,61 @@ inline constexpr sm_param_v1 param_surface_energy =
            "gamma: surface energy, a constant attraction in contact equal to the pull-off force (0: none)");
 inline constexpr sm_param_v1 param_pull_off = enumeration(
     "pull_off", "dmt|jkr", "dmt", "pull-off force of surface_energy: dmt 2 pi gamma r_eff, jkr 1.5 pi gamma r_eff");
+inline constexpr sm_param_v1 param_hamaker_constant =
+    number("hamaker_constant", "J", 0, 1e-17, 0,
+           "A: van der Waals attraction A r_eff / (6 s^2) across a gap s up to vdw_cutoff, held at its value at "
+           "vdw_min_gap closer in and in contact (0: none; CPU only)");
+inline constexpr sm_param_v1 param_vdw_min_gap =
+    number("vdw_min_gap", "m", 1e-11, 1e-5, 4e-10,
+           "s_0: the gap below which the van der Waals force stays at A r_eff / (6 s_0^2) (it would diverge)");
+inline constexpr sm_param_v1 param_vdw_cutoff =
+    number("vdw_cutoff", "m", 0, 1e-4, 1e-6,
+           "s_c: the gap beyond which the van der Waals force is cut to 0; the engine lists pairs this much farther");
 
-// Attractive normal force while two bodies overlap (delta > 0), subtracted from the law's repulsion:
+// Attractive normal force (> 0 pulls the bodies together), subtracted from the law's repulsion.
+// In contact (delta > 0):
 //   SJKR:         F_c = k_c A,             A = 2 pi r_eff delta (the overlap's intersection circle to first
 //                                          order in delta/r; LIGGGHTS' cohesion sjkr takes the exact lens)
 //   surface energy, pull_off: dmt  F_c = 2 pi gamma r_eff   (the DMT pull-off force, constant)
 //                   pull_off: jkr  F_c = 1.5 pi gamma r_eff (the JKR pull-off force, constant; not the JKR
 //                                                            force-overlap curve)
-// One formula, F_c = r_eff (area_rate delta + pull_off_rate), covers them. Nothing acts at a gap: the
-// engine gives a law touching contacts only (no cut-off range beyond contact; docs/cohesion.md).
-// `on` is false when both are 0; the laws' loops are then compiled without this part (WithCohesion in
+//   van der Waals: F_c = A r_eff / (6 s_0^2) (the gap force at s_0, constant)
+// One formula, F_c = r_eff (area_rate delta + pull_off_rate), covers them. Across a gap s = -delta only the van der
+// Waals force acts (Hamaker's sphere-sphere and sphere-plane force for s << r, as Parteli and Poeschel 2016 used
+// for powder spreading): F = r_eff A / (6 max(s, s_0)^2) for s < s_c, 0 beyond. It is continuous at contact and
+// drops by (s_0/s_c)^2 of its contact value at the cut-off. A law with it declares range() = s_c: the engine
+// then gives it pairs and plane records down to delta = -s_c (docs/cohesion.md).
+// `on` is false when all are 0; the laws' loops are then compiled without this part (WithCohesion in
 // contact.hpp), so a scene without cohesion runs the very code and bits it ran before.
 struct Cohesion {
   bool on;
   double area_rate;      // 2 pi k_c [N/m^2]
-  double pull_off_rate;  // 2 pi gamma (dmt) or 1.5 pi gamma (jkr) [N/m]
+  double pull_off_rate;  // 2 pi gamma (dmt) or 1.5 pi gamma (jkr), plus A / (6 s_0^2) [N/m]
+  double gap_rate;       // A / 6 [J]
+  double min_gap;        // s_0 [m]
+  double range;          // s_c when A > 0, else 0 [m]
 
   static Cohesion bind(const Values &v) {
     const double k_c = v["cohesion_energy_density"], gamma = v["surface_energy"];
     const double factor = v.str("pull_off") == "jkr" ? 1.5 : 2.0;
-    return {k_c > 0 || gamma > 0, 2 * pi * k_c, factor * pi * gamma};
+    const double a = v["hamaker_constant"], s0 = v["vdw_min_gap"], sc = v["vdw_cutoff"];
+    if (a > 0 && !(sc > s0))
+      throw ParamError("vdw_cutoff (" + number_text(sc) + " m) must exceed vdw_min_gap (" + number_text(s0) +
+                       " m) for the van der Waals force to act across a gap: raise vdw_cutoff");
+    const double contact_rate = a > 0 ? a / (6 * s0 * s0) : 0.0;
+    return {
+        k_c > 0 || gamma > 0 || a > 0, 2 * pi * k_c, factor * pi * gamma + contact_rate, a / 6, s0, a > 0 ? sc : 0.0};
   }
-  // Attractive force [N] (> 0 pulls the bodies together) of a contact with this overlap.
+  // Attractive force [N] (> 0 pulls the bodies together) of a contact with this overlap (> 0).
   template <class Real> SM_HD Real force(Real r_eff, Real overlap) const {
     return r_eff * (Real(area_rate) * overlap + Real(pull_off_rate));
   }
-  // How much the attraction softens the contact: -dF_c/d delta [N/m] (sjkr; 0 for dmt and jkr).
+  // Attractive force [N] across the gap -overlap (overlap <= 0); 0 at and beyond the cut-off. Selects only.
+  template <class Real> SM_HD Real gap_force(Real r_eff, Real overlap) const {
+    const Real s = max(-overlap, Real(min_gap));
+    return -overlap < Real(range) ? r_eff * Real(gap_rate) / (s * s) : Real(0);
+  }
+  // How much the attraction softens the contact: -dF_c/d delta [N/m] (sjkr; 0 for the constant ones).
   double softening(double r_eff) const { return area_rate * r_eff; }
   // True when the softening cancels a linear spring of this stiffness [N/m]: the net force then
   // attracts at every overlap and the contact collapses at any step.

@@ -20,8 +20,8 @@
 // are kept as records instead, one per list entry (an entry that does not touch keeps its zero
 // record), and it is summed in list order after a barrier, its records cleared again.
 //
-// Touching pairs are queued and evaluated in one loop over the queue (kinematics, law and both
-// contributions) that the compiler vectorises: a law without branches on the contact (selects
+// Touching pairs (and pairs within a law's range across a gap) are queued and evaluated in one loop over the queue
+// (kinematics, law and both contributions) that the compiler vectorises: a law without branches on the contact (selects
 // instead) runs on SIMD lanes with the same bits, as lanes do the same IEEE operations in the same
 // order. The contributions are then added one by one in queue order. The filter that fills the queue
 // runs over the flat pair sequence in fixed chunks, with no exit per particle to mispredict.
@@ -259,7 +259,7 @@ void sweep_pairs(const Law &law, const Particles<Real> &p, const PairList<Real> 
       const std::uint32_t i = pair_i[u], j = pair_j[u];
       const Real ddx = wrap_axis<PX>(x[i] - x[j], lx), ddy = wrap_axis<PY>(y[i] - y[j], ly),
                  ddz = wrap_axis<PZ>(z[i] - z[j], lz);
-      const Real reach = r[i] + r[j];
+      const Real reach = interaction_reach(law, r[i], r[j]);
       batch.i[queued] = i;
       batch.j[queued] = j;
       batch.dx[queued] = ddx;

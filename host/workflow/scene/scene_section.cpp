@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
+#include "workflow/scene/cohesion_check.hpp"
 #include "workflow/scene/layers_check.hpp"
 #include "workflow/scene/powder_cost.hpp"
 #include "workflow/scene/powder_sizes.hpp"
@@ -350,6 +351,7 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
   check_powder(*typed, powder, file, registry, diag);
   if (diag.empty()) check_layers(*typed, user, file, registry, diag);
   if (diag.empty()) check_roughness(*typed, user, file, registry, diag);
+  if (diag.empty()) check_cohesion(*typed, user, file, registry, diag);
   return typed;
 }
 

@@ -16,8 +16,9 @@
 // natural_frequency is evaluated at the Hertz stiffness of an undamped impact at v_max, whose overlap
 // is delta_max = (15 m_eq v_max^2 / (16 E* sqrt(R)))^(2/5); it is the larger of the normal mode
 // sqrt(S_n/m_eq) and the tangential one sqrt(k_t/m_t), so the host can pick a stable step.
-// Rolling resistance optional (contact_parts.hpp). Optional cohesion in contact (SJKR, DMT or JKR pull-off;
-// contact_parts.hpp, docs/cohesion.md), subtracted from F_n; natural_frequency then takes the overlap of
+// Rolling resistance optional (contact_parts.hpp). Optional cohesion (SJKR, DMT or JKR pull-off in contact,
+// van der Waals across a gap; contact_parts.hpp, docs/cohesion.md), subtracted from F_n; across a gap
+// the attraction alone acts. natural_frequency then takes the overlap of
 // the impact at v_max with the attraction's work added (the SJKR softening, which only slows the
 // contact, is left out: the step stays on the safe side). Units SI.
 // History: 3 values per contact, the tangential spring elongation s [m] in the global frame.
@@ -42,6 +43,9 @@ struct HertzMindlin {
       param_cohesion_energy_density,
       param_surface_energy,
       param_pull_off,
+      param_hamaker_constant,
+      param_vdw_min_gap,
+      param_vdw_cutoff,
   };
   static constexpr int history = 3;
 
@@ -138,8 +142,9 @@ struct HertzMindlin {
   }
   template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
-    if (!(c.overlap > 0)) {
+    if (!(c.overlap > 0)) {  // apart, or across a gap within the cohesion's range: the attraction alone
       clear_history(hist, history);
+      if constexpr (Cohesive) f.normal = -cohesion.gap_force(c.r_eff, c.overlap);
       return f;
     }
     const Real a = std::sqrt(c.r_eff * c.overlap);  // contact radius

@@ -11,8 +11,9 @@
 // gran/hooke/history): a stuck contact holds a static tangential force, so nothing creeps.
 // Reference: Cundall & Strack 1979; LAMMPS pair gran/hooke/history (slip reset of the spring).
 // Assumptions: spheres; F_n unclamped unless clamp_normal; the cap uses |F_n| of the repulsion.
-// Optional cohesion in contact (SJKR, DMT or JKR pull-off; contact_parts.hpp, docs/cohesion.md), subtracted from F_n.
-// Units SI. History: 3 values per contact, the spring elongation s [m] in the global frame.
+// Optional cohesion (SJKR, DMT or JKR pull-off in contact, van der Waals across a gap; contact_parts.hpp,
+// docs/cohesion.md), subtracted from F_n. Units SI. History: 3 values per contact, the spring elongation s [m] in the
+// global frame.
 #pragma once
 #include <spreadmap/contact.hpp>
 #include <spreadmap/contact_parts.hpp>
@@ -35,6 +36,9 @@ struct HookeHistory {
       param_cohesion_energy_density,
       param_surface_energy,
       param_pull_off,
+      param_hamaker_constant,
+      param_vdw_min_gap,
+      param_vdw_cutoff,
   };
   static constexpr int history = 3;
 
@@ -70,8 +74,9 @@ struct HookeHistory {
   }
   template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
-    if (!(c.overlap > 0)) {
+    if (!(c.overlap > 0)) {  // apart, or across a gap within the cohesion's range: the attraction alone
       clear_history(hist, history);
+      if constexpr (Cohesive) f.normal = -cohesion.gap_force(c.r_eff, c.overlap);
       return f;
     }
     f.normal = normal.force(c.m_eq, c.overlap, c.v_n);

@@ -21,8 +21,9 @@
 // within the round-off of the normal speed for none (slip_round_off): a head-on impact has no
 // friction, even with slip_speed_min = 0.
 // Optional rolling resistance (constant directional torque, see contact_parts.hpp).
-// Optional cohesion in contact (SJKR, DMT or JKR pull-off; contact_parts.hpp, docs/cohesion.md), subtracted from F_n
-// after the slider and the rolling torque took |F_n| of the repulsion (LIGGGHTS' tangential_reduce off).
+// Optional cohesion (SJKR, DMT or JKR pull-off in contact, van der Waals across a gap; contact_parts.hpp,
+// docs/cohesion.md), subtracted from F_n after the slider and the rolling torque took |F_n| of the
+// repulsion (LIGGGHTS' tangential_reduce off).
 // References: the reference study (its Eq. 1-4); Cundall & Strack 1979. Units SI.
 // History: none.
 #pragma once
@@ -49,6 +50,9 @@ struct HookeSlider {
       param_cohesion_energy_density,
       param_surface_energy,
       param_pull_off,
+      param_hamaker_constant,
+      param_vdw_min_gap,
+      param_vdw_cutoff,
   };
   static constexpr int history = 0;
 
@@ -93,7 +97,8 @@ struct HookeSlider {
     f.tangent =
         slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min), round_off);
     f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
-    if constexpr (Cohesive) f.normal -= touching ? cohesion.force(c.r_eff, c.overlap) : Real(0);
+    if constexpr (Cohesive)
+      f.normal -= touching ? cohesion.force(c.r_eff, c.overlap) : cohesion.gap_force(c.r_eff, c.overlap);
     return f;
   }
 };
