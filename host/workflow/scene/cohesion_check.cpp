@@ -18,11 +18,18 @@ Location where(const YAML::Node &user, const std::string &file, const char *sect
   return Location::of(file, sec ? sec : user);
 }
 
+// What `ask` answers of the scene's law bound with `params` (the engine's view of it).
+template <class Ask>
+auto of_bound_law(PluginRegistry &registry, const Scene &scene, const nlohmann::json &params, Ask ask) {
+  const PluginInstance law(registry.get("contact", scene.contact.use), params.dump(), "scene.contact");
+  return ask(engine::ContactLaw{law.ops<sm_contact_ops_v1>(), law.get()});
+}
+
 // The critical step of a law bound with `params` between bodies of m_eq and r_eff [s]; 0: none is stable.
 double critical_step(PluginRegistry &registry, const Scene &scene, const nlohmann::json &params, double m_eq,
                      double r_eff) {
-  const PluginInstance law(registry.get("contact", scene.contact.use), params.dump(), "scene.contact");
-  return engine::contact_critical_dt({law.ops<sm_contact_ops_v1>(), law.get()}, m_eq, r_eff);
+  return of_bound_law(registry, scene, params,
+                      [&](const engine::ContactLaw &law) { return engine::contact_critical_dt(law, m_eq, r_eff); });
 }
 
 // SJKR softens a linear contact by 2 pi k_c r_eff; where that reaches its stiffness every contact
@@ -59,10 +66,13 @@ void check_stable_step(const Scene &scene, const YAML::Node &user, const std::st
   }
 }
 
-// Van der Waals attraction across a gap (the cohesion part's hamaker_constant, in the particle or the
-// substrate law) steps on the CPU without sleeping: the engine would refuse it at the first step.
-void check_gap_attraction(const Scene &scene, const YAML::Node &user, const std::string &file, Diagnostics &diag) {
-  auto reaches = [](const nlohmann::json &law) { return law.value("hamaker_constant", 0.0) > 0; };
+// A particle or substrate law that attracts across a gap (it declares a range: the cohesion part's
+// hamaker_constant) steps on the CPU without sleeping: the engine would refuse it at the first step.
+void check_gap_attraction(const Scene &scene, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
+                          Diagnostics &diag) {
+  auto reaches = [&](const nlohmann::json &params) {
+    return of_bound_law(registry, scene, params, &engine::law_range) > 0;
+  };
   if (!reaches(scene.contact.params) && !reaches(scene.substrate.law)) return;
   if (scene.backend == "cuda")
     diag.error(where(user, file, nullptr, "backend"), "scene.backend",
@@ -80,11 +90,15 @@ void check_gap_attraction(const Scene &scene, const YAML::Node &user, const std:
 
 void check_cohesion(const Scene &scene, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
                     Diagnostics &diag) {
+  // A law or size the earlier checks refused throws here: reported there already.
   try {
     check_stable_step(scene, user, file, registry, diag);
-  } catch (const std::exception &) {  // a law or size the earlier checks refused: reported there
+  } catch (const std::exception &) {
   }
-  check_gap_attraction(scene, user, file, diag);
+  try {
+    check_gap_attraction(scene, user, file, registry, diag);
+  } catch (const std::exception &) {
+  }
 }
 
 }  // namespace spreadmap
