@@ -12,6 +12,9 @@ set(SPREADMAP_CUDA_ARCHITECTURES "80-real;90" CACHE STRING "CUDA architectures o
 # OFF: nvcc does not fuse a*b+c, so the GPU rounds every + - * / sqrt exactly as the CPU build does
 # (ISO C++ mode never contracts) and both backends give the same numbers. ON is a little faster.
 option(SPREADMAP_CUDA_FMAD "Let nvcc fuse multiply-adds in the GPU kernels" OFF)
+# Every target that compiles GPU code takes these (the plugins' kernels and the resident stepper's:
+# one fused integration step is enough for the backends to part after a few thousand steps).
+set(SPREADMAP_CUDA_FP_OPTIONS $<$<AND:$<COMPILE_LANGUAGE:CUDA>,$<NOT:$<BOOL:${SPREADMAP_CUDA_FMAD}>>>:--fmad=false>)
 
 set(SPREADMAP_WITH_CUDA OFF)
 if(NOT SPREADMAP_ENABLE_CUDA STREQUAL "OFF")
@@ -88,9 +91,7 @@ function(spreadmap_plugin_cuda target kind sources)
   target_sources(${target} PRIVATE ${companion})
   target_include_directories(${target} PRIVATE ${SPREADMAP_CUDA_INCLUDE_DIR})
   target_compile_definitions(${target} PRIVATE "SPREADMAP_BACKENDS=(SM_BACKEND_CPU|SM_BACKEND_CUDA)")
-  if(NOT SPREADMAP_CUDA_FMAD)
-    target_compile_options(${target} PRIVATE $<$<COMPILE_LANGUAGE:CUDA>:--fmad=false>)
-  endif()
+  target_compile_options(${target} PRIVATE ${SPREADMAP_CUDA_FP_OPTIONS})
   # A static CUDA runtime: the module loads on machines without the driver or the toolkit, and its
   # symbols stay inside (hidden), so the module still exports only its entry points. Linked as the
   # toolkit's imported target (full path): the C++ linker that links the module knows no CUDA folders.

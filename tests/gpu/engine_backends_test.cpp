@@ -26,8 +26,7 @@ sm::Scene small_scene(const std::string &precision) {
       sm::load_workflow(fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml"), registry(), diag);
   diag.throw_if_any();
   sm::Scene scene = *resolved;
-  scene.powder.count = 400;
-  scene.powder.heap_to = 0.009;
+  scene.powder.count = 400;  // a low heap over the preset's 6-13 mm (a 3 mm heap would sit under the roller)
   scene.powder.settle_time = 0.02;
   scene.spreader.params["U"] = 0.1;
   scene.precision = precision == "float" ? sm::Precision::float32 : sm::Precision::float64;
