@@ -1,8 +1,10 @@
 # host/workflow: the local executor's pool of case threads, with stand-ins for the cases; the typed
-# scene and the function that sets design variables on it; the powder's size keys, with real plugins.
+# scene, the function that sets design variables on it and the spreader's span of the width; the
+# powder's size keys, with real plugins.
 spreadmap_test(unit workflow SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_local_executor_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/workflow_replicates_test.cpp LIBS spreadmap_workflow)
-spreadmap_test(unit scene_model SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_scene_model_test.cpp LIBS spreadmap_workflow)
+spreadmap_test(unit scene_model SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_scene_model_test.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/workflow_spreader_span_test.cpp LIBS spreadmap_workflow)
 spreadmap_test(unit powder SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_powder_test.cpp LIBS spreadmap_workflow)
 add_dependencies(test_unit_powder plugin_contact_hooke_slider plugin_contact_hertz_mindlin plugin_spreader_roller)
 # scene.substrate.roughness: the key, its refusals, and the case set-up's fixed spheres on the plate.

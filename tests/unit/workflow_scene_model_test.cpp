@@ -63,7 +63,8 @@ TEST(SceneModel, EveryPresetsResolvedSceneRoundTripsToTheSameJsonText) {
 }
 
 // The paper preset is a periodic strip of paper_full's scene (docs/paper-scale.md): the same plate,
-// travel, spreader and contact, its heap the full roller's spheres per width (to one sphere).
+// travel, spreader and contact, its heap the full roller's spheres per width (to one sphere). The full
+// roller is centred on the full width; the strip lies within its half at y_centre 0.
 TEST(SceneModel, ThePaperPresetIsAStripOfTheFullWidthWithItsSpheresPerWidth) {
   const sm::Scene strip = preset_scene("paper"), full = preset_scene("paper_full");
   EXPECT_TRUE(strip.domain.periodic_y);
@@ -72,9 +73,12 @@ TEST(SceneModel, ThePaperPresetIsAStripOfTheFullWidthWithItsSpheresPerWidth) {
   EXPECT_DOUBLE_EQ(full.domain.width, 70e-3);
   const double per_width = double(full.powder.count) * strip.domain.width / full.domain.width;
   EXPECT_LE(std::abs(double(strip.powder.count) - per_width), 1.0) << per_width;
+  EXPECT_DOUBLE_EQ(full.spreader.params["y_centre"].get<double>(), 35e-3);
+  EXPECT_DOUBLE_EQ(strip.spreader.params["y_centre"].get<double>(), 0.0);
   nlohmann::json a = sm::to_json(strip), b = sm::to_json(full);
   for (auto *j : {&a, &b}) {
     (*j)["domain"].erase("width"), (*j)["domain"].erase("periodic_y"), (*j)["powder"].erase("count");
+    (*j)["spreader"]["params"].erase("y_centre");
     j->erase("preset");
   }
   EXPECT_EQ(a.dump(2), b.dump(2));

@@ -226,6 +226,7 @@ struct BadScene {
   std::string csv = "x,y,z,radius,density\n0,0,0.002,0.001,2500\n0.003,0,0.002,0.001,2500\n";
   std::string walls = "walls:\n  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1]}\n";
   std::string extra;
+  std::string domain = "domain: {lo: [-10 mm, -10 mm, -1 mm], hi: [10 mm, 10 mm, 20 mm]}\n";
 };
 
 }  // namespace
@@ -236,8 +237,8 @@ class BadScenes : public Scenes {
   void refused(const BadScene &s, const std::string &where, const std::string &what) {
     std::ofstream(dir_ / "p.csv") << s.csv;
     std::ofstream(dir_ / "s.yaml") << "version: 1\nname: bad\n"
-                                      "domain: {lo: [-10 mm, -10 mm, -1 mm], hi: [10 mm, 10 mm, 20 mm]}\n"
-                                      "contact: {use: hooke_slider}\n"
+                                   << s.domain
+                                   << "contact: {use: hooke_slider}\n"
                                       "particles: {file: p.csv}\n"
                                    << s.walls << "run: {duration: 1 ms}\n"
                                    << s.extra;
@@ -290,6 +291,10 @@ TEST_F(BadScenes, AreRefusedBeforeAnythingRunsWithTheFileLineOrKey) {
   refused(s, "walls[0].spreader.gap", "outside [0, 0.1] m");
   s.walls = "walls:\n  - {type: spreader, normal: [0, 0, 1], spreader: {use: blade}}\n";
   refused(s, "walls[0].normal", "not a key of a spreader wall");
+  // a roller 10 mm long across a periodic 20 mm: the seam beside its end face would put spheres inside it
+  s.domain = "domain: {lo: [-10 mm, -10 mm, -1 mm], hi: [10 mm, 10 mm, 20 mm], periodic: [y]}\n";
+  s.walls = "walls:\n  - {type: spreader, spreader: {use: roller, length: 10 mm}}\n";
+  refused(s, "walls[0].spreader.y_centre", "make spreader.length at least 20 mm and set spreader.y_centre: 0 mm");
 }
 
 // A scene written by the test: the YAML after `version: 1` and the particle CSV.

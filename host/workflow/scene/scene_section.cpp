@@ -8,6 +8,7 @@
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 #include "workflow/scene/cohesion_check.hpp"
+#include "workflow/scene/spreader_span.hpp"
 #include "workflow/scene/layers_check.hpp"
 #include "workflow/scene/powder_cost.hpp"
 #include "workflow/scene/powder_sizes.hpp"
@@ -352,6 +353,7 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
   if (diag.empty()) check_layers(*typed, user, file, registry, diag);
   if (diag.empty()) check_roughness(*typed, user, file, registry, diag);
   if (diag.empty()) check_cohesion(*typed, user, file, registry, diag);
+  if (diag.empty()) check_spreader_span(*typed, user, file, registry, diag);
   return typed;
 }
 

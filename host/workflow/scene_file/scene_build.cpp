@@ -5,12 +5,14 @@
 #include "cuda/resident_stepper.hpp"
 #endif
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <spreadmap/contact.hpp>
 
 #include "core/error.hpp"
 #include "workflow/scene_file/scene_parse.hpp"
 #include "workflow/scene_file/scene_walls.hpp"
+#include "workflow/scene/spreader_span.hpp"
 #include "workflow/workflow.hpp"
 
 namespace spreadmap::scene_file {
@@ -113,6 +115,9 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
       const PluginInstance &plugin = run->spreader_plugins.emplace_back(registry.get("spreader", w.spreader.use),
                                                                         w.spreader.params.dump(), at + w.key_path);
       const BoundSpreader spreader{&plugin, w.spreader.time_offset};
+      if (const auto shortfall = spreader_span_shortfall(spreader.description(), s.domain);
+          shortfall && shortfall->periodic)
+        throw InputError(fmt::format("error: {}{}: {}\n  {}", at, w.key_path, shortfall->what, shortfall->fix));
       sim.add_geometry({&spreader.ops(), plugin.get(), bound(wall_law), w.name, w.spreader.time_offset});
       run->spreaders.push_back(spreader);
       spreader_laws.push_back(&wall_law);

@@ -9,6 +9,8 @@
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
+#include "workflow/scene/spreader_span.hpp"
+#include "workflow/scene_file/scene_build.hpp"
 
 namespace spreadmap::scene_file {
 namespace sm = spreadmap;
@@ -277,7 +279,7 @@ void read_particles(const Reader &r, const YAML::Node &node, const fs::path &dir
 // A spreader wall's plugin and its parameters (`spreader: {use: NAME, ...}`), checked by the plugin's
 // schema and its own cross-checks.
 void read_spreader(const Reader &r, const YAML::Node &wall, const std::string &path, PluginRegistry &registry,
-                   SpreaderWall &out) {
+                   const engine::Domain &domain, SpreaderWall &out) {
   const std::string at = path + ".spreader";
   const YAML::Node node = wall["spreader"];
   const char *fix = "write spreader: {use: NAME, ...}; spreadmap plugins --kind spreader lists the spreaders";
@@ -293,6 +295,9 @@ void read_spreader(const Reader &r, const YAML::Node &wall, const std::string &p
   if (!r.diag.empty()) return;
   try {
     PluginInstance probe(*plugin, out.params.dump());
+    if (const auto shortfall = spreader_span_shortfall(BoundSpreader{&probe, 0.0}.description(), domain);
+        shortfall && shortfall->periodic)
+      r.diag.error(r.at(node["y_centre"] ? node["y_centre"] : node), at + ".y_centre", shortfall->what, shortfall->fix);
   } catch (const PluginError &e) {
     std::string text = e.what();
     if (text.rfind("error: ", 0) == 0) text.erase(0, 7);
@@ -360,7 +365,7 @@ void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law
     if (spec.kind == WallKind::spreader) {
       foreign({"point", "normal", "lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega",
                "velocity"});
-      read_spreader(r, w, path, registry, spec.spreader);
+      read_spreader(r, w, path, registry, s.domain, spec.spreader);
       spec.spreader.time_offset = -spec.start;  // the plugin's time 0 (its start) at `start`, at rest before
     } else if (spec.kind == WallKind::plane) {
       foreign({"lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
