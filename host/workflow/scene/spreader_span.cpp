@@ -5,7 +5,7 @@
 
 #include <exception>
 
-#include "workflow/scene_file/scene_build.hpp"
+#include "workflow/simulate/case_setup.hpp"
 
 namespace spreadmap {
 
@@ -35,16 +35,11 @@ void check_spreader_span(const Scene &scene, const YAML::Node &user, const std::
                          Diagnostics &diag) {
   sm_spreader_description_v2 described{};
   try {
-    const PluginInstance spreader(registry.get("spreader", scene.spreader.use), scene.spreader.params.dump(),
-                                  file + ": scene.spreader");
-    described = scene_file::BoundSpreader{&spreader, 0.0}.description();
+    described = describe_spreader(scene, registry, file);
   } catch (const std::exception &) {
     return;  // a spreader that cannot be bound is reported where it is bound
   }
-  engine::Domain domain;
-  domain.hi = {scene.domain.length, scene.domain.width, scene.domain.height};
-  domain.periodic = {scene.domain.periodic_x, scene.domain.periodic_y, false};
-  const auto shortfall = spreader_span_shortfall(described, domain);
+  const auto shortfall = spreader_span_shortfall(described, make_domain(scene));
   if (!shortfall) return;
   if (!shortfall->periodic) {
     spdlog::warn("{}: scene.spreader: {}\n  {}", file, shortfall->what, shortfall->fix);

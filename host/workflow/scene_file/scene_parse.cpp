@@ -297,7 +297,10 @@ void read_spreader(const Reader &r, const YAML::Node &wall, const std::string &p
     PluginInstance probe(*plugin, out.params.dump());
     if (const auto shortfall = spreader_span_shortfall(BoundSpreader{&probe, 0.0}.description(), domain);
         shortfall && shortfall->periodic)
-      r.diag.error(r.at(node["y_centre"] ? node["y_centre"] : node), at + ".y_centre", shortfall->what, shortfall->fix);
+      r.diag.error(r.at(node["y_centre"] ? node["y_centre"]
+                        : node["length"] ? node["length"]
+                                         : node),
+                   at + ".y_centre", shortfall->what, shortfall->fix);
   } catch (const PluginError &e) {
     std::string text = e.what();
     if (text.rfind("error: ", 0) == 0) text.erase(0, 7);
