@@ -370,3 +370,20 @@ TEST_F(WrittenScenes, ASphereInsideATubeReboundsWithTheRestitutionAndATurningTub
     }
   }
 }
+
+// A spreader short of open sides is a warning, not a refusal; a process says it once per file however
+// often the scene is resolved (once per stage of a run; here the same file validated twice).
+TEST_F(Scenes, ASpreaderShortOfOpenSidesIsWarnedOnceAndAccepted) {
+  const fs::path file = dir_ / "open.yaml";
+  std::ofstream(file) << "version: 1\nname: open\nscene:\n  preset: quick\n"
+                         "  domain: {width: 40 mm, periodic_y: false}\n"
+                         "  spreader: {length: 20 mm, y_centre: 20 mm}\n"
+                         "stages:\n  - simulate: {}\n";
+  const auto r = t::run({{"validate", file.string(), file.string()}, {}, {}, {}});
+  EXPECT_EQ(r.exit_code, 0) << r.describe();
+  const std::string warning = "the spreader spans y = 10..30 mm, the domain 0..40 mm: the powder beyond its ends";
+  const std::size_t first = r.err.find(warning);
+  ASSERT_NE(first, std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(warning, first + 1), std::string::npos) << "said more than once:\n" << r.err;
+  EXPECT_NE(r.err.find("make spreader.length at least 40 mm and set spreader.y_centre: 20 mm"), std::string::npos);
+}

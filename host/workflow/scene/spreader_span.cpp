@@ -4,6 +4,8 @@
 #include <spdlog/spdlog.h>
 
 #include <exception>
+#include <mutex>
+#include <set>
 
 #include "workflow/simulate/case_setup.hpp"
 
@@ -31,6 +33,17 @@ std::optional<SpanShortfall> spreader_span_shortfall(const sm_spreader_descripti
   return s;
 }
 
+namespace {
+// Whether this process has not said `text` yet: a run resolves its scene once per stage, and the
+// same warning each time would read as many problems.
+bool first_time(const std::string &text) {
+  static std::mutex guard;
+  static std::set<std::string> said;
+  const std::lock_guard<std::mutex> lock(guard);
+  return said.insert(text).second;
+}
+}  // namespace
+
 void check_spreader_span(const Scene &scene, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
                          Diagnostics &diag) {
   sm_spreader_description_v2 described{};
@@ -42,7 +55,8 @@ void check_spreader_span(const Scene &scene, const YAML::Node &user, const std::
   const auto shortfall = spreader_span_shortfall(described, make_domain(scene));
   if (!shortfall) return;
   if (!shortfall->periodic) {
-    spdlog::warn("{}: scene.spreader: {}\n  {}", file, shortfall->what, shortfall->fix);
+    const std::string text = fmt::format("{}: scene.spreader: {}\n  {}", file, shortfall->what, shortfall->fix);
+    if (first_time(text)) spdlog::warn("{}", text);
     return;
   }
   const YAML::Node section = user["spreader"];
