@@ -88,8 +88,20 @@ TEST(AdaptiveDesign, TwoFidelitiesRunCheapCasesOnTheirSceneAndMapTheExpensiveOne
     cheap += is_cheap;
     EXPECT_EQ(is_cheap, std::stoi(ids[i].substr(1)) >= 6) << ids[i];
     EXPECT_DOUBLE_EQ(scene["contact"]["params"]["overlap_max"].get<double>(), is_cheap ? 10e-6 : 5e-6) << ids[i];
+    // no region.y in the workflow: each case measured across its own strip (half as wide when cheap)
+    const double width = is_cheap ? 0.625e-3 : 1.25e-3;
+    EXPECT_DOUBLE_EQ(scene["domain"]["width"].get<double>(), width) << ids[i];
+    const auto region = json_file(dir / "cases" / ids[i] / "metrics.json")["region"];
+    EXPECT_EQ(region["y"][0].get<double>(), 0.0) << ids[i];
+    EXPECT_DOUBLE_EQ(region["y"][1].get<double>(), width) << ids[i];
   }
   EXPECT_EQ(cheap, 6u);
+
+  // train's GP learnt one noise per fidelity (noise_by_input: 3), and keeps the groups in its state
+  const auto gp = json_file(dir / "train" / "gp" / "model.json")["state"];
+  EXPECT_EQ(gp["noise_groups"]["input"], 2);
+  EXPECT_EQ(gp["noise_groups"]["values"], nlohmann::json({0.0, 1.0}));
+  EXPECT_EQ(gp["theta"][0].size(), 6u) << "log(s^2), length scales of U, omega and the fidelity, two noises";
 
   // the model takes the fidelity as an input; the map holds it at 1 on the default 101 x 81 grid
   const auto map = spreadmap::analysis::Table::read_csv((dir / "map" / "map.csv").string());

@@ -1,10 +1,12 @@
 // surrogate/gp core: likelihood (and posterior) gradient against finite differences, interpolation
 // with the noise at its lower bound, closed-form leave-one-out against an explicit refit, predictive
-// std, and the noise level learned from a noisy set.
+// std, and the noise level learned from a noisy set (one level, or one per value of a grouping input).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "plugins/surrogate/gp/gp_model.hpp"
 #include "tests/unit/surrogate_study_function.hpp"
@@ -175,4 +177,84 @@ TEST(SurrogateGp, AFittedPointWithALargeKnownScatterIsFollowedLessTightly) {
   EXPECT_GT(miss_scattered, 2 * miss_precise);
   EXPECT_LT(std::abs(b.predict(x.row(odd))(0, 0) - smooth), 0.5 * kick) << "nearer the smooth response than the kick";
   EXPECT_THROW(a.fit(x, y, Eigen::MatrixXd::Constant(y.rows(), 1, -1.0)), std::invalid_argument);
+}
+
+TEST(SurrogateGp, GroupedNoiseGradientEqualsFiniteDifferences) {
+  // Two nuggets (rows alternately in groups 0 and 1): each one's derivative, with and without the prior
+  const Eigen::MatrixXd x = sm::test::study_grid(4, 5);
+  const Eigen::MatrixXd xs =
+      (x.rowwise() - x.colwise().mean()).array().rowwise() / Eigen::RowVector2d(0.02, 13).array();
+  const Eigen::VectorXd y = sm::test::study_outputs(x).col(1);
+  const Eigen::VectorXd ys = (y.array() - y.mean()) / 5e-6;
+  std::vector<int> group(std::size_t(x.rows()));
+  for (std::size_t i = 0; i < group.size(); ++i) group[i] = int(i % 2);
+  const GpModel m;
+  Eigen::VectorXd theta(5);
+  theta << 0.3, -0.2, 0.4, std::log(3e-2), std::log(2e-3);
+  Eigen::VectorXd g, gp;
+  m.negative_log_likelihood(theta, xs, ys, &g, nullptr, &group);
+  m.negative_log_posterior(theta, xs, ys, &gp, nullptr, &group);
+  for (Eigen::Index i = 0; i < theta.size(); ++i) {
+    Eigen::VectorXd a = theta, b = theta;
+    a[i] += 1e-5, b[i] -= 1e-5;
+    const double fd = (m.negative_log_likelihood(a, xs, ys, nullptr, nullptr, &group) -
+                       m.negative_log_likelihood(b, xs, ys, nullptr, nullptr, &group)) /
+                      2e-5;
+    EXPECT_NEAR(g[i], fd, 1e-6 * g.norm()) << "theta " << i;
+    const double fd_post = (m.negative_log_posterior(a, xs, ys, nullptr, nullptr, &group) -
+                            m.negative_log_posterior(b, xs, ys, nullptr, nullptr, &group)) /
+                           2e-5;
+    EXPECT_NEAR(gp[i], fd_post, 1e-6 * gp.norm()) << "theta " << i << " (posterior)";
+  }
+  // equal nuggets are one nugget
+  Eigen::VectorXd same = theta, one(4);
+  same[4] = same[3];
+  one << theta.head(4);
+  EXPECT_NEAR(m.negative_log_likelihood(same, xs, ys, nullptr, nullptr, &group),
+              m.negative_log_likelihood(one, xs, ys, nullptr), 1e-9);
+}
+
+TEST(SurrogateGp, LearnsANoiseLevelPerValueOfTheGroupingInput) {
+  // A two-fidelity set: the same function (R_q-like), 60 cheap rows (fidelity 0) scattered by 3 um
+  // and 30 expensive ones (fidelity 1) by 1 um. One noise per fidelity finds both within 30 %; one
+  // shared noise sits between them and overstates the expensive rows' scatter.
+  const double sigma_cheap = 3e-6, sigma_expensive = 1e-6;
+  const sm::test::NoisySet cheap = sm::test::noisy_rq(60, sigma_cheap, 11);
+  const sm::test::NoisySet expensive = sm::test::noisy_rq(30, sigma_expensive, 12);
+  Eigen::MatrixXd x(90, 3), y(90, 1), truth(90, 1);
+  x << cheap.x, Eigen::VectorXd::Zero(60), expensive.x, Eigen::VectorXd::Ones(30);
+  y << cheap.y, expensive.y;
+  truth << cheap.truth, expensive.truth;
+  GpConfig grouped;
+  grouped.noise_group_input = 2;
+  GpModel m(grouped), shared;
+  m.fit(x, y);
+  shared.fit(x, y);
+  const auto info = m.info()["outputs"][0];
+  const double learned_cheap = info["noise_std_by_group"][0]["noise_std"].get<double>();
+  const double learned_expensive = info["noise_std_by_group"][1]["noise_std"].get<double>();
+  const double learned_shared = shared.info()["outputs"][0]["noise_std"].get<double>();
+  std::printf("learned noise: cheap %.3f um (true %.3f), expensive %.3f um (true %.3f); one shared %.3f um\n",
+              learned_cheap * 1e6, sigma_cheap * 1e6, learned_expensive * 1e6, sigma_expensive * 1e6,
+              learned_shared * 1e6);
+  EXPECT_EQ(info["noise_std"].get<double>(), learned_expensive) << "noise_std is the largest value's group";
+  EXPECT_NEAR(learned_cheap, sigma_cheap, 0.3 * sigma_cheap);
+  EXPECT_NEAR(learned_expensive, sigma_expensive, 0.3 * sigma_expensive);
+  EXPECT_GT(learned_shared, 1.5 * sigma_expensive) << "one shared noise overstates the expensive rows' scatter";
+
+  // saved and loaded again, the groups stay part of the model
+  const GpModel again = GpModel::from_json(nlohmann::json::parse(m.to_json().dump()), {});
+  EXPECT_TRUE((again.predict(x).array() == m.predict(x).array()).all());
+  EXPECT_EQ(again.info()["outputs"][0]["noise_std"].get<double>(), learned_expensive);
+
+  // grouping by a setting (90 distinct values) is refused, naming the input and the limit
+  GpConfig by_u;
+  by_u.noise_group_input = 0;
+  GpModel refused(by_u);
+  try {
+    refused.fit(x, y);
+    ADD_FAILURE() << "grouping by U was accepted";
+  } catch (const std::invalid_argument &e) {
+    EXPECT_NE(std::string(e.what()).find("input 1 takes 90 values"), std::string::npos) << e.what();
+  }
 }

@@ -50,6 +50,7 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
   LayerRequest rq = settings.request;
   rq.region = settings.region;
   if (scene.domain.periodic_y) rq.periodic_y = std::make_pair(0.0, scene.domain.width);
+  if (settings.y_across_case && scene.domain.periodic_y) rq.region.y0 = 0, rq.region.y1 = scene.domain.width;
   // the spreader as it spread: its gap raised by the drop and by a rough substrate's mean plane
   const Scene spread_by = layer_scene(scene, std::max(layer, 1));
   take_spreader(rq, describe_spreader(spread_by, registry, case_dir / "scene.json"));
@@ -119,6 +120,7 @@ CharacteriseSettings read_characterise_settings(const Workflow &wf, const YAML::
       read_bounds(r["y"], file, "characterise.region.y", region.y0, region.y1, diag);
     }
   }
+  s.y_across_case = scene->domain.periodic_y && !(cfg["region"] && cfg["region"]["y"]);
   const double length = scene->domain.length, width = scene->domain.width;
   if (region.x0 < 0 || region.x1 > length || region.y0 < 0 || region.y1 > width || region.x1 <= region.x0 ||
       region.y1 <= region.y0)
@@ -133,7 +135,8 @@ CharacteriseSettings read_characterise_settings(const Workflow &wf, const YAML::
 
 std::string settings_hash(const CharacteriseSettings &s) {
   const Region &r = s.region;
-  return stable_hash(s.request.params.dump() + nlohmann::json({r.x0, r.x1, r.y0, r.y1}).dump() + s.request.plugin);
+  return stable_hash(s.request.params.dump() + nlohmann::json({r.x0, r.x1, r.y0, r.y1}).dump() + s.request.plugin +
+                     (s.y_across_case ? "y across each case" : ""));
 }
 
 nlohmann::json case_metrics(PluginRegistry &registry, const CharacteriseSettings &settings, const fs::path &dir,

@@ -18,6 +18,9 @@ namespace spreadmap {
 struct CharacteriseSettings {
   LayerRequest request;  // plugin and its validated parameters; the region is `region`
   Region region;
+  // region.y not written on a periodic strip: each case is measured across its own width (a cheap
+  // fidelity's strip, a design over domain.width), not the workflow scene's.
+  bool y_across_case = false;
   figures::Style style;
   bool render = true;
 };

@@ -22,7 +22,11 @@ void run_adaptive_design(StageContext &ctx, const Design &design, bool render) {
     for (std::size_t k = 0; k < d; ++k) candidates(Eigen::Index(i), Eigen::Index(k)) = design.cases[i][k];
 
   const LoadedPlugin &gp = ctx.registry.get("surrogate", "gp");
-  const std::string gp_params = default_params(*gp.descriptor, gp.id()).dump();
+  nlohmann::json gp_defaults = default_params(*gp.descriptor, gp.id());
+  // Two fidelities: one noise level each (the cheap strip scatters more; a shared one blurs the
+  // expensive cases). The fidelity is the input after the design's variables.
+  if (two_fidelities) gp_defaults["noise_by_input"] = d + 1;
+  const std::string gp_params = gp_defaults.dump();
   const std::size_t budget = std::min(design.budget ? design.budget : n, n);
   const double target = design.target_nrmse > 0 ? design.target_nrmse : 1.0;
   std::vector<std::size_t> initial = analysis::space_filling_start(candidates);

@@ -5,7 +5,8 @@
 // numbers, so an interrupted design resumes from its finished cases. Writes adaptive.json.
 // With `fidelity:` (two fidelities, analysis/multifidelity.hpp) the cheap cases are the same rows
 // with the cheap keys set, ids after the candidates', and every case gets a `fidelity` input (0
-// cheap, 1 expensive) that train fits and map holds at 1.
+// cheap, 1 expensive) that train fits and map holds at 1. The loop's GP learns one noise level per
+// fidelity (surrogate/gp's noise_by_input); a train stage asks for it with `params: {noise_by_input: K}`.
 #pragma once
 #include "workflow/simulate/design.hpp"
 #include "workflow/stage.hpp"

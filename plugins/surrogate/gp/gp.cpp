@@ -3,7 +3,8 @@
 // fit_info() reports per output the fitted length scales (input units), signal and noise standard
 // deviations (output units: the host's train report shows them), the log marginal likelihood, and
 // `loo_mean`: closed-form leave-one-out predictions at the training rows (rows x outputs, output
-// units) for cross-validated errors. The noise is learnt, with a weak log-normal prior (gp_model.hpp).
+// units) for cross-validated errors. The noise is learnt, with a weak log-normal prior (gp_model.hpp),
+// one level for all rows or one per value of an input (noise_by_input).
 #include <spreadmap/plugin.hpp>
 #include <spreadmap/surrogate.hpp>
 
@@ -29,6 +30,9 @@ struct Gp {
                  "median of the log-normal prior on the noise variance n^2, as a share of each output's variance"),
       sm::number("noise_prior_width", "-", 0, 20, 3,
                  "standard deviation of log n^2 under that prior (0 = no prior: the plain marginal likelihood)"),
+      sm::integer("noise_by_input", 0, 64, 0,
+                  "0: one noise level for all rows; k: one per value of input k (1-based, at most 8 values), "
+                  "e.g. a multi-fidelity design's fidelity, whose cheap runs scatter more"),
   };
   static constexpr int has_std = 1;
 
@@ -45,6 +49,7 @@ struct Gp {
     c.max_iterations = v.integer("max_iterations");
     c.noise_prior_median = v["noise_prior_median"];
     c.noise_prior_width = v["noise_prior_width"];
+    c.noise_group_input = int(v.integer("noise_by_input")) - 1;
     if (c.noise_min > c.noise_max)
       throw sm::ParamError("noise_min = " + std::to_string(c.noise_min) + " is above noise_max = " +
                            std::to_string(c.noise_max) + "; lower noise_min or raise noise_max");

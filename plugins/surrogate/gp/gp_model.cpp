@@ -26,12 +26,20 @@ namespace {
 constexpr double sqrt5 = 2.23606797749979;
 constexpr double log_2pi = 1.8378770664093453;
 
-// Bounds of theta = log(s^2, l_1..d, n^2) on standardised data.
-void bounds(const GpConfig &c, int d, VectorXd &lo, VectorXd &hi) {
-  lo.resize(d + 2), hi.resize(d + 2);
+// Bounds of theta = log(s^2, l_1..d, n_1^2..n_G^2) on standardised data.
+void bounds(const GpConfig &c, int d, int noises, VectorXd &lo, VectorXd &hi) {
+  lo.resize(d + 1 + noises), hi.resize(d + 1 + noises);
   lo[0] = std::log(1e-4), hi[0] = std::log(1e4);
   lo.segment(1, d).setConstant(std::log(1e-2)), hi.segment(1, d).setConstant(std::log(1e3));
-  lo[d + 1] = std::log(c.noise_min), hi[d + 1] = std::log(c.noise_max);
+  lo.tail(noises).setConstant(std::log(c.noise_min)), hi.tail(noises).setConstant(std::log(c.noise_max));
+}
+
+// The nugget of each row: theta[d + 1 + its group], or theta[d + 1] for all when there are no groups.
+VectorXd row_noise(const VectorXd &theta, int d, Eigen::Index n, const std::vector<int> *group) {
+  if (!group) return VectorXd::Constant(n, std::exp(theta[d + 1]));
+  VectorXd v(n);
+  for (Eigen::Index i = 0; i < n; ++i) v[i] = std::exp(theta[d + 1 + (*group)[std::size_t(i)]]);
+  return v;
 }
 
 // k as a function of the ARD-scaled squared distance r2, and dk/d(r_d^2 term) factor q such that
@@ -62,12 +70,13 @@ MatrixXd GpModel::kernel(const VectorXd &theta, const MatrixXd &a, const MatrixX
 }
 
 double GpModel::negative_log_likelihood(const VectorXd &theta, const MatrixXd &xs, const VectorXd &ys, VectorXd *grad,
-                                        const VectorXd *known) const {
+                                        const VectorXd *known, const std::vector<int> *group) const {
   const Eigen::Index n = xs.rows();
   const int d = int(xs.cols());
-  const double noise = std::exp(theta[d + 1]);
+  if (group && Eigen::Index(group->size()) != n) throw std::invalid_argument("gp: one noise group per row expected");
+  const VectorXd noise = row_noise(theta, d, n, group);
   MatrixXd k = kernel(theta, xs, xs);
-  k.diagonal().array() += noise;
+  k.diagonal() += noise;
   if (known) k.diagonal() += *known;
   const Eigen::LLT<MatrixXd> llt(k);
   if (llt.info() != Eigen::Success) return std::numeric_limits<double>::infinity();
@@ -90,19 +99,22 @@ double GpModel::negative_log_likelihood(const VectorXd &theta, const MatrixXd &x
       (*grad)[0] += half_w * kv.k;                               // dk/dlog s^2 = k
       grad->segment(1, d) += half_w * kv.q * diff2.transpose();  // dk/dlog l_d = q r_d^2
     }
-  (*grad)[d + 1] = 0.5 * noise * w.trace();  // dK/dlog n^2 = n^2 I
+  // dK/dlog n_g^2 = n_g^2 on the diagonal of group g's rows
+  for (Eigen::Index i = 0; i < n; ++i)
+    (*grad)[d + 1 + (group ? (*group)[std::size_t(i)] : 0)] += 0.5 * noise[i] * w(i, i);
   return value;
 }
 
 double GpModel::negative_log_posterior(const VectorXd &theta, const MatrixXd &xs, const VectorXd &ys, VectorXd *grad,
-                                       const VectorXd *known) const {
-  double value = negative_log_likelihood(theta, xs, ys, grad, known);
+                                       const VectorXd *known, const std::vector<int> *group) const {
+  double value = negative_log_likelihood(theta, xs, ys, grad, known, group);
   if (config_.noise_prior_width <= 0 || !std::isfinite(value)) return value;
-  // log-normal prior on the noise share n^2: log n^2 ~ N(log median, width^2)
-  const int d = int(xs.cols());
-  const double z = (theta[d + 1] - std::log(config_.noise_prior_median)) / config_.noise_prior_width;
-  value += 0.5 * z * z;
-  if (grad) (*grad)[d + 1] += z / config_.noise_prior_width;
+  // log-normal prior on each noise share n_g^2: log n_g^2 ~ N(log median, width^2)
+  for (Eigen::Index j = xs.cols() + 1; j < theta.size(); ++j) {
+    const double z = (theta[j] - std::log(config_.noise_prior_median)) / config_.noise_prior_width;
+    value += 0.5 * z * z;
+    if (grad) (*grad)[j] += z / config_.noise_prior_width;
+  }
   return value;
 }
 
@@ -111,7 +123,7 @@ const VectorXd *GpModel::known_noise(std::size_t c) const { return c < known_.si
 void GpModel::prepare(Output &out, const VectorXd &ys, const VectorXd *known) const {
   const int d = int(xs_.cols());
   MatrixXd k = kernel(out.theta, xs_, xs_);
-  k.diagonal().array() += std::exp(out.theta[d + 1]);
+  k.diagonal() += row_noise(out.theta, d, xs_.rows(), groups());
   if (known) k.diagonal() += *known;
   const Eigen::LLT<MatrixXd> llt(k);
   if (llt.info() != Eigen::Success)
@@ -137,10 +149,11 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y, const MatrixXd &noise_va
   x_scale_ = Standardiser::fit(x), y_scale_ = Standardiser::fit(y);
   xs_ = x_scale_.forward(x);
   set_known_noise(noise_var);
+  set_noise_groups({});
   const MatrixXd ys_all = y_scale_.forward(y);
-  const int d = int(x.cols());
+  const int d = int(x.cols()), noises = noise_count();
   VectorXd lo, hi;
-  bounds(config_, d, lo, hi);
+  bounds(config_, d, noises, lo, hi);
   // No length scale below half the spacing of the design along that input: features finer than the
   // sampling cannot be resolved, and on a small lattice of noisy DEM results the likelihood
   // otherwise prefers a near-zero length with near-zero noise (spikes at every training point).
@@ -164,19 +177,20 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y, const MatrixXd &noise_va
     Random rng(config_.seed + std::uint64_t(c) * 0x9e3779b97f4a7c15ULL);
     const VectorXd *known = known_noise(std::size_t(c));
     const auto objective = [&](const VectorXd &t, VectorXd &g) {
-      return negative_log_posterior(t, xs_, ys, &g, known);
+      return negative_log_posterior(t, xs_, ys, &g, known, groups());
     };
     double best = std::numeric_limits<double>::infinity();
     Output &out = outputs_[std::size_t(c)];
     for (int start = 0; start < config_.restarts; ++start) {
-      VectorXd t(d + 2);
+      VectorXd t(d + 1 + noises);
       if (start == 0) {
         t.setZero();
-        t[d + 1] = std::log(std::max(config_.noise_min, std::min(config_.noise_max, 1e-4)));
+        t.tail(noises).setConstant(std::log(std::max(config_.noise_min, std::min(config_.noise_max, 1e-4))));
       } else {
         t[0] = rng.uniform(std::log(0.1), std::log(10.0));
         for (int k = 0; k < d; ++k) t[1 + k] = rng.uniform(std::log(0.1), std::log(10.0));
-        t[d + 1] = rng.uniform(lo[d + 1], std::max(lo[d + 1], std::min(hi[d + 1], std::log(0.1))));
+        for (int g = 0; g < noises; ++g)
+          t[d + 1 + g] = rng.uniform(lo[d + 1], std::max(lo[d + 1], std::min(hi[d + 1], std::log(0.1))));
       }
       t = t.cwiseMax(lo).cwiseMin(hi);
       const LbfgsResult r = lbfgs_minimise(objective, t, o);
@@ -185,6 +199,31 @@ void GpModel::fit(const MatrixXd &x, const MatrixXd &y, const MatrixXd &noise_va
     if (!std::isfinite(best)) throw std::runtime_error("gp: no start gave a finite likelihood; raise noise_min");
     prepare(out, ys, known);
   }
+}
+
+// values empty: found from the training inputs (fit); given: a saved state's (from_json).
+void GpModel::set_noise_groups(std::vector<double> values) {
+  group_values_.clear(), group_.clear();
+  const int c = config_.noise_group_input;
+  if (c < 0) return;
+  if (c >= x_train_.cols())
+    throw std::invalid_argument("gp: noise_group_input " + std::to_string(c + 1) + " is past the " +
+                                std::to_string(x_train_.cols()) + " inputs");
+  if (values.empty()) {
+    values.assign(x_train_.col(c).data(), x_train_.col(c).data() + x_train_.rows());
+    std::sort(values.begin(), values.end());
+    values.erase(std::unique(values.begin(), values.end()), values.end());
+  }
+  if (values.size() > std::size_t(max_noise_groups))
+    throw std::invalid_argument("gp: input " + std::to_string(c + 1) + " takes " + std::to_string(values.size()) +
+                                " values; a noise per value allows at most " + std::to_string(max_noise_groups) +
+                                " (group by a fidelity or a batch, not a setting)");
+  for (Eigen::Index i = 0; i < x_train_.rows(); ++i) {
+    const auto at = std::find(values.begin(), values.end(), x_train_(i, c));
+    if (at == values.end()) throw std::invalid_argument("gp state: a row's noise group is not among noise_groups");
+    group_.push_back(int(at - values.begin()));
+  }
+  group_values_ = std::move(values);
 }
 
 void GpModel::set_known_noise(const MatrixXd &noise_var) {
@@ -253,6 +292,8 @@ nlohmann::json GpModel::to_json() const {
                       {"y_scale", y_scale_.to_json()},     {"x", matrix_json(x_train_)},
                       {"y", matrix_json(y_train_)},        {"theta", thetas}};
   if (noise_var_.size()) j["noise_var"] = matrix_json(noise_var_);  // absent: none given
+  if (!group_values_.empty())                                       // absent: one nugget
+    j["noise_groups"] = {{"input", config_.noise_group_input}, {"values", group_values_}};
   return j;
 }
 
@@ -267,6 +308,9 @@ GpModel GpModel::from_json(const nlohmann::json &j, GpConfig config) {
   if (m.x_train_.rows() != m.y_train_.rows() || m.x_train_.rows() < 1)
     throw std::invalid_argument("gp state: x and y differ in rows");
   m.xs_ = m.x_scale_.forward(m.x_train_);
+  m.config_.noise_group_input = j.contains("noise_groups") ? j["noise_groups"].at("input").get<int>() : -1;
+  m.set_noise_groups(j.contains("noise_groups") ? j["noise_groups"].at("values").get<std::vector<double>>()
+                                                : std::vector<double>{});
   m.set_known_noise(j.contains("noise_var") ? matrix_from_json(j.at("noise_var"), n_out, "noise_var") : MatrixXd());
   if (m.noise_var_.size() && m.noise_var_.rows() != m.y_train_.rows())
     throw std::invalid_argument("gp state: noise_var and y differ in rows");
@@ -276,7 +320,8 @@ GpModel GpModel::from_json(const nlohmann::json &j, GpConfig config) {
   m.outputs_.assign(std::size_t(n_out), {});
   for (Eigen::Index c = 0; c < n_out; ++c) {
     const auto t = thetas.at(std::size_t(c)).get<std::vector<double>>();
-    if (Eigen::Index(t.size()) != d + 2) throw std::invalid_argument("gp state: theta has the wrong length");
+    if (Eigen::Index(t.size()) != d + 1 + m.noise_count())
+      throw std::invalid_argument("gp state: theta has the wrong length");
     m.outputs_[std::size_t(c)].theta = Eigen::Map<const VectorXd>(t.data(), Eigen::Index(t.size()));
     m.prepare(m.outputs_[std::size_t(c)], ys.col(c), m.known_noise(std::size_t(c)));
   }
@@ -291,17 +336,26 @@ nlohmann::json GpModel::info() const {
     const double ys = y_scale_.scale[Eigen::Index(c)];
     std::vector<double> length(static_cast<std::size_t>(d));
     for (int k = 0; k < d; ++k) length[std::size_t(k)] = std::exp(o.theta[1 + k]) * x_scale_.scale[k];
-    const double noise_share = std::exp(o.theta[d + 1]);
-    outs.push_back({{"signal_std", std::sqrt(std::exp(o.theta[0])) * ys},
-                    {"length_scales", length},
-                    {"noise_std", std::sqrt(noise_share) * ys},
-                    {"noise_at_lower_bound", o.theta[d + 1] <= std::log(config_.noise_min) + 1e-9},
-                    {"log_marginal_likelihood", o.lml},
-                    {"iterations", o.iterations}});
+    // With noise groups, noise_std is the last group's (the grouping input's largest value: the
+    // expensive fidelity, which a map predicts); each group's is under noise_std_by_group.
+    const int last = d + noise_count();
+    nlohmann::json out = {
+        {"signal_std", std::sqrt(std::exp(o.theta[0])) * ys},
+        {"length_scales", length},
+        {"noise_std", std::sqrt(std::exp(o.theta[last])) * ys},
+        {"noise_at_lower_bound", o.theta.tail(noise_count()).minCoeff() <= std::log(config_.noise_min) + 1e-9},
+        {"log_marginal_likelihood", o.lml},
+        {"iterations", o.iterations}};
+    for (std::size_t g = 0; g < group_values_.size(); ++g)
+      out["noise_std_by_group"].push_back(
+          {{"value", group_values_[g]}, {"noise_std", std::sqrt(std::exp(o.theta[d + 1 + Eigen::Index(g)])) * ys}});
+    outs.push_back(out);
   }
   return {{"kernel", name_of(config_.kernel)},
           {"restarts", config_.restarts},
           {"noise_prior", {{"median_share", config_.noise_prior_median}, {"log_width", config_.noise_prior_width}}},
+          {"noise_group_input",
+           config_.noise_group_input < 0 ? nlohmann::json() : nlohmann::json(config_.noise_group_input + 1)},
           {"outputs", outs},
           {"loo_mean", fitted() ? matrix_json(loo_mean()) : nlohmann::json::array()}};
 }

@@ -4,9 +4,12 @@
 // Kernels (ARD: one length scale l_d per input; r^2 = sum_d (x_d - x'_d)^2 / l_d^2):
 //   squared_exponential  k = s^2 exp(-r^2 / 2)
 //   matern52             k = s^2 (1 + sqrt5 r + 5 r^2 / 3) exp(-sqrt5 r)
-// plus a noise variance n^2 on the diagonal (the nugget: the scatter of repeated runs). Hyperparameters
-// theta = log(s^2, l_1..l_d, n^2) maximise the log marginal likelihood plus a log-normal prior on n^2
-// (median 1e-2 of the output's variance, log-sd 3: weak, yet on a handful of noisy points it keeps
+// plus a noise variance n^2 on the diagonal (the nugget: the scatter of repeated runs). With
+// noise_group_input the rows are grouped by that input's value (a fidelity: 0 cheap, 1 expensive) and
+// each group has its own nugget n_g^2: a narrow cheap strip scatters more than the full-width runs, and
+// one shared nugget would blur the expensive ones. Hyperparameters theta = log(s^2, l_1..l_d, n_1^2..n_G^2)
+// (G = 1 without groups) maximise the log marginal likelihood plus a log-normal prior on n^2
+// each (median 1e-2 of the output's variance, log-sd 3: weak, yet on a handful of noisy points it keeps
 // the likelihood's flat valley from sliding to interpolation), by analytic gradient and bounded
 // L-BFGS from `restarts` starts: the first at s = l = 1, the others drawn from a seeded generator;
 // the best wins. noise_prior_width = 0 gives the plain marginal likelihood (scikit-learn's).
@@ -41,7 +44,11 @@ struct GpConfig {
   // Log-normal prior on n^2 (share of each output's variance): log n^2 ~ N(log median, width^2);
   // width 0 = none (plain marginal likelihood).
   double noise_prior_median = 1e-2, noise_prior_width = 3.0;
+  // The input (0-based column) whose distinct values each get their own nugget; -1: one for all rows.
+  int noise_group_input = -1;
 };
+
+inline constexpr int max_noise_groups = 8;
 
 class GpModel {
  public:
@@ -58,13 +65,16 @@ class GpModel {
 
   // -log marginal likelihood of standardised data at log-hyperparameters theta, with gradient.
   // Returns +inf when K is not positive definite. Public for the gradient test. `known`: per-row
-  // variances (standardised) added to the diagonal, or null.
+  // variances (standardised) added to the diagonal, or null. `group`: each row's noise group (its
+  // nugget theta[d + 1 + g]), or null: one nugget, theta[d + 1].
   double negative_log_likelihood(const Eigen::VectorXd &theta, const Eigen::MatrixXd &xs, const Eigen::VectorXd &ys,
-                                 Eigen::VectorXd *grad, const Eigen::VectorXd *known = nullptr) const;
+                                 Eigen::VectorXd *grad, const Eigen::VectorXd *known = nullptr,
+                                 const std::vector<int> *group = nullptr) const;
 
   // The same plus the noise prior's -log density (up to a constant): what the fit minimises.
   double negative_log_posterior(const Eigen::VectorXd &theta, const Eigen::MatrixXd &xs, const Eigen::VectorXd &ys,
-                                Eigen::VectorXd *grad, const Eigen::VectorXd *known = nullptr) const;
+                                Eigen::VectorXd *grad, const Eigen::VectorXd *known = nullptr,
+                                const std::vector<int> *group = nullptr) const;
 
   nlohmann::json to_json() const;  // state: kernel, scaling, training data, theta per output
   static GpModel from_json(const nlohmann::json &j, GpConfig config);
@@ -73,7 +83,7 @@ class GpModel {
 
  private:
   struct Output {
-    Eigen::VectorXd theta;  // log(s^2), log(l_1..d), log(n^2)
+    Eigen::VectorXd theta;  // log(s^2), log(l_1..d), log(n_1^2..n_G^2)
     double lml = 0;         // log marginal likelihood (standardised data)
     Eigen::MatrixXd chol;   // lower Cholesky factor of K + n^2 I
     Eigen::VectorXd alpha;  // (K + n^2 I)^-1 y
@@ -85,6 +95,9 @@ class GpModel {
   // Output c's known variances on the standardised scale, or null when none were given.
   const Eigen::VectorXd *known_noise(std::size_t c) const;
   void set_known_noise(const Eigen::MatrixXd &noise_var);  // after y_scale_ is set
+  void set_noise_groups(std::vector<double> values);       // group_ from x_train_ and these values
+  int noise_count() const { return group_values_.empty() ? 1 : int(group_values_.size()); }
+  const std::vector<int> *groups() const { return group_values_.empty() ? nullptr : &group_; }
 
   GpConfig config_;
   Standardiser x_scale_, y_scale_;
@@ -92,6 +105,8 @@ class GpModel {
   Eigen::MatrixXd noise_var_;           // raw, rows x outputs; empty when none was given
   std::vector<Eigen::VectorXd> known_;  // per output: noise_var_ standardised
   Eigen::MatrixXd xs_;                  // standardised inputs
+  std::vector<double> group_values_;    // the grouping input's distinct values, ascending; empty: no groups
+  std::vector<int> group_;              // per training row: its index in group_values_
   std::vector<Output> outputs_;
 };
 
