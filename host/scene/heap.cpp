@@ -10,8 +10,6 @@
 namespace spreadmap::scene {
 namespace {
 
-constexpr double sphere_volume_factor = std::numbers::pi / 6.0;  // V = (pi/6) d^3
-
 // Uniform cells of at least the largest diameter over the region (x, y fixed; z grows with the
 // top), each listing the spheres whose centre lies in it: two spheres can only overlap when their
 // cells are neighbours.

@@ -11,8 +11,7 @@
 namespace spreadmap::scene {
 namespace {
 
-constexpr double sphere_volume_factor = std::numbers::pi / 6.0;  // V = (pi/6) d^3
-constexpr int normal_panels = 4096;                              // of the normal's table over ln d
+constexpr int normal_panels = 4096;  // of the normal's table over ln d
 
 double normal_cdf(double x) { return 0.5 * std::erfc(-x / std::sqrt(2.0)); }
 double normal_pdf(double x) { return std::exp(-0.5 * x * x) / std::sqrt(2.0 * std::numbers::pi); }

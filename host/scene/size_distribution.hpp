@@ -22,12 +22,15 @@
 // within a class the diameter is drawn.
 #pragma once
 #include <cstddef>
+#include <numbers>
 #include <vector>
 
 #include "scene/scene_error.hpp"
 #include "spreadmap/random.hpp"
 
 namespace spreadmap::scene {
+
+inline constexpr double sphere_volume_factor = std::numbers::pi / 6.0;  // V = (pi/6) d^3
 
 enum class SizeKind { monodisperse, lognormal, normal, table };
 enum class FractionBasis { number, volume };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 #include <vtkActor2D.h>
 #include <vtkCellArray.h>
@@ -18,7 +19,7 @@
 namespace spreadmap::render::detail {
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 vtkSmartPointer<vtkActor2D> actor_for(vtkPolyData* pd, const Rgb& colour, double opacity) {
   vtkNew<vtkPolyDataMapper2D> mapper;

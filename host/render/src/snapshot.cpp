@@ -35,7 +35,6 @@ namespace sm = spreadmap;
 namespace spreadmap::render::detail {
 
 namespace {
-constexpr double mm = 1e3;  // metres -> millimetres
 
 void check_input(const SnapshotInput& in) {
   const std::size_t n = in.x.size();

@@ -11,6 +11,8 @@
 
 namespace spreadmap::render::detail {
 
+inline constexpr double mm = 1e3;  // metres -> millimetres: the scenes are drawn in mm
+
 struct SnapshotScene {
   std::vector<vtkSmartPointer<vtkActor>> actors;
 };

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -22,8 +23,7 @@
 namespace spreadmap::render::detail {
 
 namespace {
-constexpr double mm = 1e3;
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 constexpr double deg = 180.0 / pi;
 
 vtkSmartPointer<vtkActor> actor_of(vtkAlgorithmOutput* port, bool cell_colours) {

@@ -18,7 +18,7 @@ namespace {
 
 constexpr double reference_rate = 1.2e7;  // particle-steps/s: the quickstart on 2 cores
 
-std::string um(double d) { return fmt::format("{:.3g}", d * 1e6); }
+std::string um_3(double d) { return fmt::format("{:.3g}", d * 1e6); }  // 3 significant digits
 
 std::string summary(const CaseCost &c) {
   return fmt::format("{:.2g} particles, dt = {:.3g} s, {:.2g} particle-steps", c.particles, c.step, c.particle_steps());
@@ -59,7 +59,7 @@ std::optional<std::string> powder_cost_warning(const Scene &scene, PluginRegistr
       "{:.2g} particle-steps/s (practical: up to {:.0e}): {:.2g} particles from {} um (median by number {} um); "
       "dt = {:.3g} s, {}; {:.3g} s simulated. Trades:",
       file, now.particle_steps(), now.particle_steps() / reference_rate / 3600, reference_rate,
-      practical_particle_steps, now.particles, um(now.smallest), um(now.median), now.step,
+      practical_particle_steps, now.particles, um_3(now.smallest), um_3(now.median), now.step,
       ratio > 1.01 ? fmt::format("{:.2g} x smaller than particles of the median size would allow", ratio)
                    : std::string("the contact law's step does not depend on the size"),
       now.simulated_time);
@@ -85,7 +85,7 @@ std::optional<std::string> powder_cost_warning(const Scene &scene, PluginRegistr
   text += fmt::format(
       " powder.d_min: {} um (the D10 by number) gives {} (leaves out the finest 10 % of the "
       "particles, {:.2g} % of the powder's volume)",
-      um(truncated.powder.d_min), summary(estimate_case_cost(truncated, registry)),
+      um_3(truncated.powder.d_min), summary(estimate_case_cost(truncated, registry)),
       100 * sizes.cdf(truncated.powder.d_min, scene::FractionBasis::volume));
   return text;
 }

@@ -137,7 +137,7 @@ std::optional<double> size(const Row &row, const char *name, Diagnostics &diag) 
   return d;
 }
 
-std::string um(double d) { return fmt::format("{:.4g} um", d * 1e6); }
+std::string with_um(double d) { return fmt::format("{:.4g} um", d * 1e6); }
 
 // The rows in SI, checked: one kind, sizes in order, fractions >= 0 summing to 1.
 nlohmann::json checked_rows(const std::vector<Row> &rows, const Location &table_at, const std::string &basis,
@@ -169,14 +169,15 @@ nlohmann::json checked_rows(const std::vector<Row> &rows, const Location &table_
       continue;
     }
     if (classes && !(*lo < *hi)) {
-      diag.error(row.at, key_path, fmt::format("the class from {} to {} is empty or reversed", um(*lo), um(*hi)),
+      diag.error(row.at, key_path,
+                 fmt::format("the class from {} to {} is empty or reversed", with_um(*lo), with_um(*hi)),
                  "from is the finer sieve (what stays on it), to the coarser (what passed it)");
       ok = false;
     } else if (i > 0 && !(*lo >= previous && (classes || *lo > previous))) {
       diag.error(row.at, key_path,
-                 classes
-                     ? fmt::format("the class from {} overlaps the one before, which ends at {}", um(*lo), um(previous))
-                     : fmt::format("sizes out of order: {} after {}", um(*lo), um(previous)),
+                 classes ? fmt::format("the class from {} overlaps the one before, which ends at {}", with_um(*lo),
+                                       with_um(previous))
+                         : fmt::format("sizes out of order: {} after {}", with_um(*lo), with_um(previous)),
                  "list the rows from the smallest size to the largest, each size once");
       ok = false;
     }

@@ -13,10 +13,10 @@
 namespace sm = spreadmap;
 using sm::layer::PeriodicStrip;
 using sm::layer::SphereArrays;
+using sm::layer::undefined;
 
 namespace {
 
-constexpr double undefined = std::numeric_limits<double>::quiet_NaN();
 constexpr double max_slices = 1e6;  // beyond this: a unit mistake in the slice, not a bed
 
 // Top of the highest sphere whose disk reaches the region (in y through any periodic image), not

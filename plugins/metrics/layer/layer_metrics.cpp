@@ -15,10 +15,9 @@ namespace sm = spreadmap;
 using sm::layer::LayerResult;
 using sm::layer::PeriodicStrip;
 using sm::layer::SphereArrays;
+using sm::layer::undefined;
 
 namespace {
-
-constexpr double undefined = std::numeric_limits<double>::quiet_NaN();
 
 void check_input(const sm_layer_input_v1 &in) {
   if (in.n > 0 && (!in.x || !in.y || !in.z || !in.r))

@@ -17,6 +17,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,6 +27,8 @@
 #include "segregation.hpp"
 
 namespace spreadmap::layer {
+
+inline constexpr double undefined = std::numeric_limits<double>::quiet_NaN();  // a metric with no value
 
 struct LayerMetrics {
   double mean_height = 0, rq = 0, vs = 0, solid_thickness = 0, packing_fraction = 0, packing_fraction_gap = 0;
