@@ -247,14 +247,19 @@ TEST(SurrogateGp, LearnsANoiseLevelPerValueOfTheGroupingInput) {
   EXPECT_TRUE((again.predict(x).array() == m.predict(x).array()).all());
   EXPECT_EQ(again.info()["outputs"][0]["noise_std"].get<double>(), learned_expensive);
 
-  // grouping by a setting (90 distinct values) is refused, naming the input and the limit
-  GpConfig by_u;
-  by_u.noise_group_input = 0;
-  GpModel refused(by_u);
-  try {
-    refused.fit(x, y);
-    ADD_FAILURE() << "grouping by U was accepted";
-  } catch (const std::invalid_argument &e) {
-    EXPECT_NE(std::string(e.what()).find("input 1 takes 90 values"), std::string::npos) << e.what();
-  }
+  // refused with a message naming what is wrong: grouping by a setting (90 distinct values), an
+  // input past the last one (named as the user writes it)
+  const auto refusal = [&](int input) {
+    GpConfig c;
+    c.noise_group_input = input;
+    GpModel model(c);
+    try {
+      model.fit(x, y);
+    } catch (const std::invalid_argument &e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(refusal(0).find("input 1 takes 90 values"), std::string::npos) << refusal(0);
+  EXPECT_NE(refusal(3).find("noise_by_input = 4 is past the 3 inputs"), std::string::npos) << refusal(3);
 }

@@ -207,8 +207,9 @@ void GpModel::set_noise_groups(std::vector<double> values) {
   const int c = config_.noise_group_input;
   if (c < 0) return;
   if (c >= x_train_.cols())
-    throw std::invalid_argument("gp: noise_group_input " + std::to_string(c + 1) + " is past the " +
-                                std::to_string(x_train_.cols()) + " inputs");
+    throw std::invalid_argument("gp: noise_by_input = " + std::to_string(c + 1) + " is past the " +
+                                std::to_string(x_train_.cols()) +
+                                " inputs; set it to 0 (one noise) or an input's number");
   if (values.empty()) {
     values.assign(x_train_.col(c).data(), x_train_.col(c).data() + x_train_.rows());
     std::sort(values.begin(), values.end());
