@@ -39,6 +39,7 @@ commands:
   query MODEL         predictions or the best operating point of a trained model
   render STATE        snapshot of a particle state as PNG
   verify WORKFLOW     simulate the optimum a workflow's map proposes and check it against the prediction
+  report RUN_DIR      rebuild RUN_DIR/report.html, the run's answer on one page
 
   spreadmap <command> --help    options of a command
   spreadmap --version
@@ -260,7 +261,7 @@ int main(int argc, char **argv) {
     if (cmd == "plugins") return cmd_plugins(argc - 1, argv + 1);
     if (auto sub = sm::find_command(cmd)) return sub(argc - 1, argv + 1);
     const std::vector<std::string> cmds = {"run", "validate", "plugins", "characterise", "train",
-                                           "map", "query",    "render",  "simulate",     "verify"};
+                                           "map", "query",    "render",  "simulate",     "verify", "report", "calibrate"};
     const std::string near = sm::closest(cmd, cmds);
     std::cerr << "error: unknown command '" << cmd << "'" << (near.empty() ? "" : "; did you mean '" + near + "'?")
               << "\n"

@@ -7,8 +7,9 @@ packages="cmake g++ make pkg-config libboost-dev libboost-program-options-dev li
 libyaml-cpp-dev nlohmann-json3-dev libspdlog-dev libgtest-dev libgmock-dev libbenchmark-dev xvfb xauth
 libopenmpi-dev openmpi-bin"
 if [ "${1:-}" = "--tests" ]; then
-  # slurm-wlm and munge: the one-node Slurm of tests/cluster/slurm_localhost.sh (started by the test)
-  packages="$packages python3-numpy python3-sklearn slurm-wlm munge"
+  # slurm-wlm and munge: the one-node Slurm of tests/cluster/slurm_localhost.sh (started by the test);
+  # chromium and libxml2-utils (xmllint): the report's browser and well-formedness tests
+  packages="$packages python3-numpy python3-sklearn slurm-wlm munge chromium libxml2-utils"
 fi
 
 missing=""

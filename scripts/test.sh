@@ -9,8 +9,12 @@ jobs="${SPREADMAP_BUILD_JOBS:-2}"
 
 scripts/setup.sh --tests
 
-echo "== release build"
-cmake --preset release
+# The CUDA kernels compile here whenever nvcc is present, GPU or not (AUTO leaves them out without a GPU).
+cuda=AUTO
+if command -v nvcc >/dev/null 2>&1 || [ -x /usr/local/cuda/bin/nvcc ]; then cuda=ON; fi
+
+echo "== release build (CUDA kernels: $cuda)"
+cmake --preset release -DSPREADMAP_ENABLE_CUDA="$cuda"
 cmake --build build -j"$jobs"
 if command -v nvidia-smi >/dev/null 2>&1 && nvidia-smi -L 2>/dev/null | grep -q "^GPU"; then
   leave_out="manual"

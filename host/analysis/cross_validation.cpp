@@ -47,6 +47,10 @@ void score_cross_validation(Report &report, const CrossValidation &cv, const Eig
     s.nrmse_cv_sd = mean_sd(per_fold).sd;
     s.r_cv = yr.rows() >= min_rows_for_r ? pearson(yr.col(o), cv.predicted.col(o))
                                          : std::numeric_limits<double>::quiet_NaN();
+    const double sse = (yr.col(o) - cv.predicted.col(o)).squaredNorm();
+    const double sst = (yr.col(o).array() - yr.col(o).mean()).square().sum();
+    s.rmse_cv = yr.rows() > 0 ? std::sqrt(sse / double(yr.rows())) : std::numeric_limits<double>::quiet_NaN();
+    s.q2_cv = sst > 0 ? 1 - sse / sst : std::numeric_limits<double>::quiet_NaN();
   }
   report.cv_rows = cv.rows.size();
   report.cv_folds = cv.fold_nrmse.empty() ? 0 : cv.fold_nrmse.front().size();

@@ -1,6 +1,7 @@
 #include "optimum.hpp"
 
 #include <algorithm>
+#include <boost/math/special_functions/erf.hpp>
 #include <cmath>
 #include <stdexcept>
 
@@ -15,42 +16,63 @@ void check_columns(const GridMap &g, std::size_t vs, std::size_t rq) {
 }
 }  // namespace
 
-Optimum find_optimum(const GridMap &g, std::size_t vs, std::size_t rq, double rq_max) {
+double normal_quantile(double p) {
+  if (!(p > 0 && p < 1)) throw std::invalid_argument("normal_quantile: p must lie in (0, 1)");
+  if (p == 0.5) return 0.0;
+  return -std::sqrt(2.0) * boost::math::erfc_inv(2 * p);
+}
+
+Optimum find_optimum(const GridMap &g, std::size_t vs, std::size_t rq, double rq_max, const OptimumRule &rule) {
   check_columns(g, vs, rq);
+  if (!(rule.confidence >= 0.5 && rule.confidence < 1))
+    throw std::invalid_argument("optimum: the confidence must lie in [0.5, 1)");
   const auto &m = g.prediction.mean;
+  const bool model_std = g.prediction.std.size() > 0;
+  const bool has_std = model_std || rule.fallback_rq_std >= 0;
+  const double z = normal_quantile(rule.confidence);
+  if (z > 0 && !has_std)
+    throw std::invalid_argument("optimum: a confidence above 0.5 needs the predictive spread of R_q");
+  const auto spread = [&](Eigen::Index r) {
+    return model_std ? g.prediction.std(r, Eigen::Index(rq)) : rule.fallback_rq_std;
+  };
   Optimum o;
   o.rq_max = rq_max;
+  o.confidence = rule.confidence;
   double best = -HUGE_VAL;
   for (Eigen::Index r = 0; r < m.rows(); ++r) {
-    if (!(m(r, Eigen::Index(rq)) <= rq_max)) continue;
+    // z = 0 compares the mean alone, exactly as the mean rule always did
+    const double upper = z == 0 ? m(r, Eigen::Index(rq)) : m(r, Eigen::Index(rq)) + z * spread(r);
+    if (!(upper <= rq_max)) continue;
     if (m(r, Eigen::Index(vs)) > best) best = m(r, Eigen::Index(vs)), o.row = std::size_t(r), o.found = true;
   }
   if (!o.found) return o;
   const auto r = Eigen::Index(o.row);
   o.x = g.x.row(r).transpose();
   o.vs = m(r, Eigen::Index(vs)), o.rq = m(r, Eigen::Index(rq));
-  if (g.prediction.std.size()) {
-    o.rq_std = g.prediction.std(r, Eigen::Index(rq));
+  if (has_std) {
+    o.rq_std = spread(r);
+    o.std_source = model_std ? "model" : rule.std_source;
     o.probability =
         o.rq_std > 0 ? 0.5 * std::erfc(-(rq_max - o.rq) / (o.rq_std * std::sqrt(2.0))) : (o.rq <= rq_max ? 1.0 : 0.0);
   }
   return o;
 }
 
-std::vector<Optimum> find_optima(const GridMap &g, std::size_t vs, std::size_t rq, const std::vector<double> &targets) {
+std::vector<Optimum> find_optima(const GridMap &g, std::size_t vs, std::size_t rq, const std::vector<double> &targets,
+                                 const OptimumRule &rule) {
   std::vector<Optimum> out;
-  for (double t : targets) out.push_back(find_optimum(g, vs, rq, t));
+  for (double t : targets) out.push_back(find_optimum(g, vs, rq, t, rule));
   return out;
 }
 
 nlohmann::json Optimum::to_json(const std::vector<std::string> &names) const {
-  nlohmann::json j = {{"rq_max", rq_max}, {"found", found}};
+  nlohmann::json j = {{"rq_max", rq_max}, {"confidence", confidence}, {"found", found}};
   if (!found) return j;
   nlohmann::json in = nlohmann::json::object();
   for (Eigen::Index k = 0; k < x.size(); ++k)
     in[k < Eigen::Index(names.size()) ? names[std::size_t(k)] : "x" + std::to_string(k)] = x[k];
   j["inputs"] = in, j["vs"] = vs, j["rq"] = rq, j["grid_row"] = row;
-  if (rq_std >= 0) j["rq_std"] = rq_std, j["probability"] = probability;
+  if (rq_std >= 0) j["rq_std"] = rq_std, j["probability"] = probability, j["rq_std_source"] = std_source;
   return j;
 }
 

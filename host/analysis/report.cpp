@@ -77,6 +77,8 @@ nlohmann::json Report::to_json() const {
                     {"r_train", number_or_null(o.r_train)},
                     {"r_test", number_or_null(o.r_test)},
                     {"r_cv", number_or_null(o.r_cv)},
+                    {"q2_cv", number_or_null(o.q2_cv)},
+                    {"rmse_cv", number_or_null(o.rmse_cv)},
                     {"signal_std", number_or_null(o.signal_std)},
                     {"noise_std", number_or_null(o.noise_std)}});
   return {{"split", split},     {"split_reason", split_reason}, {"n_train", n_train}, {"n_test", n_test},

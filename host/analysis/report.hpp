@@ -22,6 +22,8 @@ struct OutputScores {
   double r_train = 0, r_test = 0;              // Pearson R; NaN for fewer than 3 rows or a constant split
   double nrmse_cv = none, nrmse_cv_sd = none;  // [%] out-of-fold NRMSE, pooled; its sd over the folds
   double r_cv = none;                          // Pearson R of the out-of-fold predictions
+  double q2_cv = none;    // out-of-fold coefficient of determination, 1 - SSE / SS about the mean
+  double rmse_cv = none;  // [unit] out-of-fold root-mean-square error
   double signal_std = none, noise_std = none;  // [unit] the model's fitted scales (surrogate/gp)
 };
 
@@ -35,7 +37,7 @@ struct Report {
 
   // {"split", "split_reason", "n_train", "n_test", "cv_rows", "cv_folds", "nrmse_unit",
   //  "outputs": [{name, unit, nrmse_train, nrmse_test, nrmse_cv, nrmse_cv_sd, r_train, r_test, r_cv,
-  //  signal_std, noise_std}], "notes"}; NaN is written as null.
+  //  q2_cv, rmse_cv, signal_std, noise_std}], "notes"}; NaN is written as null.
   nlohmann::json to_json() const;
   // one row per output: output, nrmse_train, nrmse_test, r_train, r_test, nrmse_cv, nrmse_cv_sd,
   // r_cv, signal_std, noise_std, unit

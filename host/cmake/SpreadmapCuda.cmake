@@ -1,6 +1,8 @@
 # The CUDA backend switch. SPREADMAP_ENABLE_CUDA = AUTO (default) | ON | OFF:
-#   AUTO: on when CMake finds nvcc (on PATH, or at $CUDA_PATH / /usr/local/cuda), off otherwise;
-#   ON:   nvcc is required;  OFF: a CPU-only build.
+#   AUTO: on when CMake finds nvcc (on PATH, or at $CUDA_PATH / /usr/local/cuda) and this machine has
+#         a GPU (nvidia-smi lists one): the kernels are most of a first build's time and run nowhere else;
+#   ON:   nvcc is required, GPU or not (the test command asks for it: CI compiles the kernels);
+#   OFF:  a CPU-only build.
 # It sets SPREADMAP_WITH_CUDA (the resolved answer) and, when on, defines spreadmap_plugin_cuda(), the
 # hook spreadmap_add_plugin() calls so that every contact and spreader plugin also carries its GPU
 # kernels. No GPU is needed at build time: the architectures are explicit (SPREADMAP_CUDA_ARCHITECTURES).
@@ -26,7 +28,17 @@ if(NOT SPREADMAP_ENABLE_CUDA STREQUAL "OFF")
   endif()
   include(CheckLanguage)
   check_language(CUDA)
-  if(CMAKE_CUDA_COMPILER)
+  set(spreadmap_gpu_here ON)
+  if(SPREADMAP_ENABLE_CUDA STREQUAL "AUTO")
+    execute_process(COMMAND nvidia-smi -L OUTPUT_VARIABLE spreadmap_gpus ERROR_QUIET RESULT_VARIABLE spreadmap_smi)
+    if(NOT spreadmap_smi EQUAL 0 OR NOT spreadmap_gpus MATCHES "GPU")
+      set(spreadmap_gpu_here OFF)
+    endif()
+  endif()
+  if(CMAKE_CUDA_COMPILER AND NOT spreadmap_gpu_here)
+    message(STATUS "spreadmap: nvcc found but no GPU on this machine: the CUDA kernels are not built "
+                   "(-DSPREADMAP_ENABLE_CUDA=ON builds them anyway)")
+  elseif(CMAKE_CUDA_COMPILER)
     set(SPREADMAP_WITH_CUDA ON)
   elseif(SPREADMAP_ENABLE_CUDA STREQUAL "ON")
     message(FATAL_ERROR "SPREADMAP_ENABLE_CUDA=ON but no CUDA compiler was found: install the CUDA toolkit, "

@@ -30,4 +30,6 @@ function(spreadmap_add_plugin)
   # Literally lib/, not CMAKE_INSTALL_LIBDIR (lib/x86_64-linux-gnu under /usr on Debian): the binary
   # looks in <its folder>/../lib/spreadmap/plugins.
   install(TARGETS ${t} LIBRARY DESTINATION lib/spreadmap/plugins/${P_KIND})
+  # every plugin, for the `programs` target (the program and its plugins: what the quickstart builds)
+  set_property(GLOBAL APPEND PROPERTY SPREADMAP_PLUGIN_TARGETS ${t})
 endfunction()

@@ -10,6 +10,7 @@ int cmd_render(int argc, char **argv);
 int cmd_simulate(int argc, char **argv);
 int cmd_calibrate(int argc, char **argv);
 int cmd_verify(int argc, char **argv);
+int cmd_report(int argc, char **argv);
 
 Command find_command(const std::string &name) {
   if (name == "characterise" || name == "characterize") return cmd_characterise;
@@ -19,6 +20,7 @@ Command find_command(const std::string &name) {
   if (name == "render") return cmd_render;
   if (name == "simulate") return cmd_simulate;
   if (name == "verify") return cmd_verify;
+  if (name == "report") return cmd_report;
   if (name == "calibrate" || name == "calibration") return cmd_calibrate;
   return {};
 }

@@ -6,6 +6,7 @@
 #include "core/suggest.hpp"
 #include "workflow/executors/executor_hook.hpp"
 #include "workflow/executors/local_executor.hpp"
+#include "workflow/report/run_report.hpp"
 #include "workflow/scene/scene_section.hpp"
 #include "workflow/stage.hpp"
 
@@ -20,6 +21,16 @@ std::unique_ptr<Stage> make_stage(const std::string &kind) {
   if (kind == "calibrate") return make_calibrate_stage();
   if (kind == "verify") return make_verify_stage();
   throw InputError("unknown stage '" + kind + "'");
+}
+
+// report.html after every stage: a view of the run's files, never a result, so a failure to write it
+// is said and the run goes on.
+static void refresh_report(const fs::path &run) {
+  try {
+    write_run_report(run);
+  } catch (const std::exception &e) {
+    spdlog::warn("report: {} not written ({})", (run / "report.html").string(), e.what());
+  }
 }
 
 static bool needs_scene(const Workflow &wf) {
@@ -85,7 +96,10 @@ int run_workflow(const fs::path &file, const RunOptions &given, PluginRegistry &
     run.update_manifest([&](nlohmann::json &m) {
       m["stages"][kind] = {{"start", start}, {"end", RunDirectory::now_iso()}, {"wall_seconds", wall}};
     });
+    refresh_report(run.root());
   }
+  if (options.records_manifest() && fs::exists(run.root() / "report.html"))
+    spdlog::info("report: {}", (run.root() / "report.html").string());
   return exit_ok;
 }
 

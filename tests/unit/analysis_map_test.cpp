@@ -53,25 +53,41 @@ TEST(AnalysisOptimum, FindsTheConstrainedMaximumWithinOneCell) {
   Analytic m;
   const sa::GridMap g = sa::evaluate_grid(m, box, {"vs", "rq"});
   for (double target : {0.2, 0.05, 0.6}) {
-    const sa::Optimum o = sa::find_optimum(g, 0, 1, target);
+    const sa::Optimum o = sa::find_optimum(g, 0, 1, target, {0.5});
     ASSERT_TRUE(o.found);
     EXPECT_LE(o.rq, target);
     EXPECT_LE(std::abs(o.x[0] - std::sqrt(target)), 0.01) << target;  // one cell in U
     EXPECT_LE(std::abs(o.x[1] - 0.3), 0.025) << target;               // one cell in omega
     EXPECT_EQ(o.probability, -1.0);
   }
-  EXPECT_FALSE(sa::find_optimum(g, 0, 1, -1.0).found);
+  EXPECT_FALSE(sa::find_optimum(g, 0, 1, -1.0, {0.5}).found);
 }
 
 TEST(AnalysisOptimum, ProbabilityOfMeetingTheTargetIsTheNormalLaw) {
   Analytic m;
   m.sigma = 0.01;
   const sa::GridMap g = sa::evaluate_grid(m, box, {"vs", "rq"});
-  const sa::Optimum o = sa::find_optimum(g, 0, 1, 0.2);
+  const sa::Optimum o = sa::find_optimum(g, 0, 1, 0.2, {0.5});
   const double z = (0.2 - o.rq) / 0.01;
   EXPECT_NEAR(o.probability, 0.5 * std::erfc(-z / std::sqrt(2.0)), 1e-15);
   EXPECT_GE(o.probability, 0.5);  // the point meets the target by its mean
   EXPECT_EQ(o.to_json({"U", "omega"})["inputs"]["omega"].get<double>(), o.x[1]);
+}
+
+TEST(AnalysisOptimum, AModelWithoutStdTakesTheFallbackSpreadOrIsRefusedAboveOneHalf) {
+  const Analytic m;  // no std
+  const sa::GridMap g = sa::evaluate_grid(m, box, {"vs", "rq"});
+  EXPECT_THROW(sa::find_optimum(g, 0, 1, 0.2, {0.9}), std::invalid_argument);
+  EXPECT_THROW(sa::find_optimum(g, 0, 1, 0.2, {0.4}), std::invalid_argument);
+  const sa::Optimum o = sa::find_optimum(g, 0, 1, 0.2, {0.9, 0.01, "cross-validation"});
+  ASSERT_TRUE(o.found);
+  EXPECT_EQ(o.std_source, "cross-validation");
+  EXPECT_EQ(o.rq_std, 0.01);
+  EXPECT_LE(o.rq + sa::normal_quantile(0.9) * 0.01, 0.2);
+  EXPECT_GE(o.probability, 0.9);
+  // the true curve: rq = 0.2 - 1.2816 x 0.01 at x1 = 0.3, so x0 = sqrt(that), within one cell
+  EXPECT_LE(std::abs(o.x[0] - std::sqrt(0.2 - sa::normal_quantile(0.9) * 0.01)), 0.01);
+  EXPECT_EQ(o.to_json({"U", "omega"})["rq_std_source"], "cross-validation");
 }
 
 TEST(AnalysisOptimum, FrontierIsAMonotoneStaircaseOnTheTrueCurve) {

@@ -6,3 +6,5 @@ spreadmap_test(unit surrogate_bpnn SOURCES ${CMAKE_CURRENT_LIST_DIR}/surrogate_b
 spreadmap_test(unit surrogate_gp SOURCES ${CMAKE_CURRENT_LIST_DIR}/surrogate_gp_test.cpp LIBS gp_core spreadmap_sdk)
 spreadmap_test(unit analysis SOURCES ${CMAKE_CURRENT_LIST_DIR}/analysis_table_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/analysis_map_test.cpp ${CMAKE_CURRENT_LIST_DIR}/replicate_summary_test.cpp LIBS spreadmap_analysis)
+spreadmap_test(unit confident_optimum SOURCES ${CMAKE_CURRENT_LIST_DIR}/analysis_confident_optimum_test.cpp
+  LIBS gp_core spreadmap_analysis spreadmap_sdk)

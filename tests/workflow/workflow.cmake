@@ -59,3 +59,6 @@ endif()
 # A heap spread onto a rough substrate (scene.substrate.roughness), through the binary.
 spreadmap_workflow_test(rough_substrate SOURCES ${CMAKE_CURRENT_LIST_DIR}/rough_substrate_test.cpp TIMEOUT 300)
 target_link_libraries(test_workflow_rough_substrate PRIVATE spreadmap_workflow)
+# The user guide (README.md, docs/*.md) kept true: its complete YAML files validate, its command lines
+# name real commands and options, its links reach their pages and headings.
+spreadmap_workflow_test(guide_examples SOURCES ${CMAKE_CURRENT_LIST_DIR}/guide_examples_test.cpp TIMEOUT 300)

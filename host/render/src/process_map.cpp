@@ -209,9 +209,12 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
   std::vector<double> rq_levels = in.rq_levels.empty() ? auto_levels(in.rq, 1e6, 8) : scaled(in.rq_levels, 1e6);
   std::sort(rq_levels.begin(), rq_levels.end());
   std::vector<Rgb> band_colours;
-  for (std::size_t i = 0; i + 1 < rq_levels.size(); ++i)
-    band_colours.push_back(
-        colour_at(ColourMap::yellow_red, rq_levels.size() > 2 ? i / double(rq_levels.size() - 2) : 0.5));
+  // An untrusted R_q map keeps its bands but in greys: still readable, plainly not a result.
+  for (std::size_t i = 0; i + 1 < rq_levels.size(); ++i) {
+    const double t = rq_levels.size() > 2 ? i / double(rq_levels.size() - 2) : 0.5;
+    band_colours.push_back(in.rq_greyed ? Rgb{0.93 - 0.35 * t, 0.93 - 0.35 * t, 0.93 - 0.35 * t}
+                                        : colour_at(ColourMap::yellow_red, t));
+  }
   LabelBoxes placed;  // every contour label, so that none is drawn over another
   if (rq_levels.size() >= 2) {
     grid->GetPointData()->SetActiveScalars("rq");
@@ -249,9 +252,11 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
     labelled_lines(c, grid, "rq", rq_levels, {0.45, 0.2, 0.1}, 1.2 * s, LineStyle::solid, "", um, 0.3, 17 * s, placed);
   }
 
-  const Rgb vs_colour{0.05, 0.1, 0.35}, std_colour{0.45, 0.1, 0.6}, frontier_colour{0.0, 0.45, 0.95};
+  const Rgb vs_colour = in.vs_greyed ? Rgb{0.5, 0.5, 0.5} : Rgb{0.05, 0.1, 0.35};
+  const Rgb std_colour{0.45, 0.1, 0.6}, frontier_colour{0.0, 0.45, 0.95};
   const auto vs_levels = in.vs_levels.empty() ? auto_levels(in.vs, 1e6, 7) : scaled(in.vs_levels, 1e6);
-  labelled_lines(c, grid, "vs", vs_levels, vs_colour, 2.8 * s, LineStyle::solid, "", mm2s, 0.65, 19 * s, placed);
+  labelled_lines(c, grid, "vs", vs_levels, vs_colour, 2.8 * s, in.vs_greyed ? LineStyle::dashed : LineStyle::solid,
+                 "", mm2s, 0.65, 19 * s, placed);
 
   const bool has_std = !in.rq_std.empty();
   if (has_std) {
@@ -286,12 +291,23 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
                   optimum_name.c_str(), in.optimum.u * 1e3, w.c_str(), in.optimum.omega, in.optimum.vs * 1e6,
                   mm2s.c_str(), in.optimum.rq * 1e6, um.c_str(), "");
     std::string text = label;
+    const char* le = unicode_text() ? "≤" : "<=";
     if (in.rq_target > 0) {
       char t[64];
-      std::snprintf(t, sizeof t, "\nfor the target R_q %s %.1f %s", unicode_text() ? "≤" : "<=", in.rq_target * 1e6,
-                    um.c_str());
+      std::snprintf(t, sizeof t, "\nfor the target R_q %s %.1f %s", le, in.rq_target * 1e6, um.c_str());
       text += t;
     }
+    if (in.optimum.probability >= 0 && in.rq_target > 0) {
+      char t[96];
+      std::snprintf(t, sizeof t, "\nP(R_q %s target) = %.2f%s", le, in.optimum.probability,
+                    in.optimum.confidence > 0.5 ? "" : " (chosen by the mean)");
+      text += t;
+      if (in.optimum.confidence > 0.5) {
+        std::snprintf(t, sizeof t, " %s %.2f asked", unicode_text() ? "≥" : ">=", in.optimum.confidence);
+        text += t;
+      }
+    }
+    if (in.rq_greyed || in.vs_greyed) text += "\nrests on an UNTRUSTED map";
     // on the side of the star where the label fits inside the plot (its longest line decides)
     std::size_t longest = 0, from = 0;
     for (std::size_t k = 0; k <= text.size(); ++k)
@@ -302,6 +318,11 @@ void process_map(const MapInput& in, const std::filesystem::path& png, const Opt
     c.text(text, p[0] + (left ? -30 : 30) * s, p[1] + (upper_half ? -30 : 30) * s, 19 * s, left ? 2 : 0,
            upper_half ? 2 : 0, {0, 0, 0}, 0, false, true);
   }
+
+  // What cannot be trusted, said on the figure itself, top left of the plot.
+  for (std::size_t k = 0; k < in.notes.size(); ++k)
+    c.text(in.notes[k], f.px0 + 14 * s, f.py0 + f.ph - (16 + 30 * double(k)) * s, 19 * s, 0, 2, {0.7, 0.0, 0.0}, 0,
+           true, true);
 
   draw_frame(c, f, "U [mm/s]", w + " [rad/s]", font, 7, 8);
 

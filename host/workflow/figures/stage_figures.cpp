@@ -46,12 +46,15 @@ std::size_t frames(const std::vector<engine::ParticleSet> &, const std::vector<n
   return 0;
 }
 void heightmap(const LayerResult &, const fs::path &, const std::string &) { unavailable(); }
-void parity(const analysis::Report &, const std::vector<std::string> &, const fs::path &) { unavailable(); }
+void parity(const analysis::Report &, const analysis::Table &, const std::vector<std::string> &, const fs::path &) {
+  unavailable();
+}
 void surfaces(const analysis::GridMap &, const std::vector<std::string> &, const analysis::Table &, const fs::path &) {
   unavailable();
 }
 void process_map(const analysis::GridMap &, std::size_t, std::size_t, const analysis::Table &,
-                 const std::vector<analysis::Optimum> &, const fs::path &, const analysis::Table &, int) {
+                 const std::vector<analysis::Optimum> &, const fs::path &, const analysis::Table &, int,
+                 const std::vector<std::string> &) {
   unavailable();
 }
 void tradeoff(const std::vector<TradeoffRow> &, double, double, const fs::path &) { unavailable(); }
@@ -188,7 +191,8 @@ void heightmap(const LayerResult &layer, const fs::path &png, const std::string 
   });
 }
 
-void parity(const analysis::Report &report, const std::vector<std::string> &outputs, const fs::path &png) {
+void parity(const analysis::Report &report, const analysis::Table &cv, const std::vector<std::string> &outputs,
+            const fs::path &png) {
   guarded(png, [&] {
     const auto &t = report.parity;
     const auto split = t.texts("split");
@@ -203,6 +207,8 @@ void parity(const analysis::Report &report, const std::vector<std::string> &outp
         sim.push_back(truth[i]);
         fit.push_back(pred[i]);
       }
+      if (cv.has_column(name + "_true") && cv.has_column(name + "_cv"))
+        panel.cv_simulated = cv.numbers(name + "_true"), panel.cv_predicted = cv.numbers(name + "_cv");
       in.panels.push_back(std::move(panel));
     }
     render::parity(in, png, sized(700 * int(std::max<std::size_t>(1, outputs.size())), 700));
@@ -234,7 +240,7 @@ void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &uni
 
 void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
                  const std::vector<analysis::Optimum> &optima, const fs::path &png, const analysis::Table &cases,
-                 int verified) {
+                 int verified, const std::vector<std::string> &untrusted) {
   const PlaneGrid p = plane(grid);
   if (!p.ok) return;
   guarded(png, [&] {
@@ -254,12 +260,17 @@ void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, 
     }
     if (!optima.empty() && optima.front().found) {
       const auto &o = optima.front();
-      in.optimum = {true, o.x(0), o.x(1), o.vs, o.rq, verified};
+      in.optimum = {true, o.x(0), o.x(1), o.vs, o.rq, verified, o.probability, o.confidence};
       in.rq_target = o.rq_max;
     }
     if (cases.has_column(grid.inputs[0]) && cases.has_column(grid.inputs[1])) {
       const auto u = cases.numbers(grid.inputs[0]), w = cases.numbers(grid.inputs[1]);
       for (std::size_t i = 0; i < u.size(); ++i) in.cases.push_back({u[i], w[i]});
+    }
+    for (const auto &line : untrusted) {
+      in.notes.push_back(line);
+      in.rq_greyed |= line.rfind("R_q", 0) == 0;
+      in.vs_greyed |= line.rfind("V_s", 0) == 0;
     }
     render::process_map(in, png, sized(1600, 1100, "Process map: R_q (filled) and V_s (lines)"));
   });

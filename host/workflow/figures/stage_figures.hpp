@@ -33,18 +33,23 @@ void snapshot(const engine::ParticleSet &p, const Scene &scene, const nlohmann::
 std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::vector<nlohmann::json> &poses,
                    const Scene &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title);
 void heightmap(const LayerResult &layer, const fs::path &png, const std::string &title);
-// Predicted against simulated V_s and R_q, training and test rows.
-void parity(const analysis::Report &report, const std::vector<std::string> &outputs, const fs::path &png);
+// Predicted against simulated V_s and R_q: the training fit, the test rows and, from `cv` (cv.csv:
+// <out>_true, <out>_cv), the out-of-fold predictions of cross-validation.
+void parity(const analysis::Report &report, const analysis::Table &cv, const std::vector<std::string> &outputs,
+            const fs::path &png);
 // A response surface over (U, omega) for each output, with the simulated cases as points.
 // u_col / omega_col: the grid's input columns; points: rows of (U, omega, outputs...) from training.
 void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &units, const analysis::Table &data,
               const fs::path &dir);
 // The process map: V_s and R_q contours over (U, omega), the frontier, the simulated cases (the
-// grid's input columns of `cases`, when it has them) and the first optimum, marked as proposed
-// (verified < 0), verified by simulation (1) or simulated outside its interval (0).
+// grid's input columns of `cases`, when it has them) and the first optimum with its probability of
+// meeting the target, marked as proposed (verified < 0), verified by simulation (1) or simulated
+// outside its interval (0). `untrusted`: lines saying which maps cannot be trusted ("R_q map NOT
+// TRUSTED: ..."); such a field is drawn greyed and the lines are printed on the figure.
 void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
                  const std::vector<analysis::Optimum> &optima, const fs::path &png,
-                 const analysis::Table &cases = analysis::Table(), int verified = -1);
+                 const analysis::Table &cases = analysis::Table(), int verified = -1,
+                 const std::vector<std::string> &untrusted = {});
 
 // The speed-accuracy trade: |error| of each fidelity against the reference over its wall time.
 struct TradeoffRow {

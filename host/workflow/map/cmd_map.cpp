@@ -1,5 +1,5 @@
-// spreadmap map MODEL [--grid NXxNY] [--rq-max VALUE[,VALUE...]] [--out DIR]
-// spreadmap query MODEL --at U=70mm/s,omega=-5rad/s | --best --rq-max 110um [--grid NXxNY]
+// spreadmap map MODEL [--grid NXxNY] [--rq-max VALUE[,VALUE...]] [--confidence P] [--out DIR]
+// spreadmap query MODEL --at U=70mm/s,omega=-5rad/s | --best --rq-max 110um [--confidence P] [--grid NXxNY]
 #include <fmt/format.h>
 
 #include <cmath>
@@ -39,18 +39,15 @@ std::vector<double> roughness_list(const std::string &text) {
   return out;
 }
 
-void print_optimum(const analysis::Optimum &o, const analysis::ModelFile &file) {
+void print_optimum(const analysis::Optimum &o, const analysis::ModelFile &file, const MapResult &map) {
   if (!o.found) {
-    std::cout << fmt::format("R_q <= {}: no setting in the model's input box reaches it\n", display(o.rq_max, "m"));
+    std::cout << fmt::format("R_q <= {}: no setting in the model's input box reaches it with probability {:.2f}\n",
+                             display(o.rq_max, "m"), o.confidence);
     return;
   }
-  std::cout << fmt::format("R_q <= {}: ", display(o.rq_max, "m"));
-  for (std::size_t i = 0; i < file.inputs.size(); ++i)
-    std::cout << (i ? ", " : "") << file.inputs[i].name << " = " << display(o.x(Eigen::Index(i)), file.inputs[i].unit);
-  std::cout << fmt::format(" -> V_s = {}, R_q = {}", display(o.vs, "m^2/s"), display(o.rq, "m"));
-  if (o.rq_std >= 0) std::cout << fmt::format(" +- {}", display(o.rq_std, "m"));
-  if (o.probability >= 0) std::cout << fmt::format(", P(R_q <= target) = {:.2f}", o.probability);
-  std::cout << "\n";
+  std::cout << fmt::format("R_q <= {} (confidence {:.2f}): {}\n", display(o.rq_max, "m"), o.confidence,
+                           describe_optimum(o, file));
+  for (const auto &line : map_notes(map)) std::cout << "  " << line << "\n";
 }
 
 }  // namespace
@@ -58,11 +55,13 @@ void print_optimum(const analysis::Optimum &o, const analysis::ModelFile &file) 
 int cmd_map(int argc, char **argv) {
   namespace po = boost::program_options;
   po::options_description d("map options");
-  std::string model, grid, rq_max, out;
+  std::string model, grid, rq_max, out, confidence;
   cli::Common c;
   d.add_options()("model", po::value(&model)->required(), "model.json written by train")(
       "grid", po::value(&grid), "points per input, e.g. 101x81 (the default)")(
       "rq-max", po::value(&rq_max), "wanted roughness, one or a list: 110um or 90um,110um")(
+      "confidence", po::value(&confidence)->default_value("0.9"),
+      "the optimum's P(R_q <= target) at least this (0.5: by the predicted mean)")(
       "out", po::value(&out), "folder (default map/ beside the model)")("no-figures", "do not render the PNGs");
   c.add(d);
   po::positional_options_description p;
@@ -74,6 +73,7 @@ int cmd_map(int argc, char **argv) {
   MapRequest rq;
   if (!grid.empty()) rq.points = parse_grid_points(grid, mapped_inputs(file));
   rq.rq_max = roughness_list(rq_max);
+  rq.confidence = parse_confidence(confidence, "--confidence");
   auto &registry = PluginRegistry::global();
   const auto map = make_process_map(registry, file, rq);
   const fs::path dir = out.empty() ? fs::path(model).parent_path() / "map" : fs::path(out);
@@ -82,18 +82,20 @@ int cmd_map(int argc, char **argv) {
   if (fs::exists(data_csv)) data = std::make_unique<analysis::Table>(analysis::Table::read_csv(data_csv.string()));
   write_process_map(map, file, dir, data.get(), !vm.count("no-figures"));
   std::cout << fmt::format("{} grid points -> {}\n", map.grid.x.rows(), (dir / "map.csv").string());
-  for (const auto &o : map.optima) print_optimum(o, file);
+  for (const auto &o : map.optima) print_optimum(o, file, map);
   return 0;
 }
 
 int cmd_query(int argc, char **argv) {
   namespace po = boost::program_options;
   po::options_description d("query options");
-  std::string model, at, rq_max, grid;
+  std::string model, at, rq_max, grid, confidence;
   cli::Common c;
   d.add_options()("model", po::value(&model)->required(), "model.json written by train")(
       "at", po::value(&at), "a setting, e.g. U=70mm/s,omega=-5rad/s (every input of the model)")(
-      "best", "the largest V_s whose predicted R_q is at most --rq-max")(
+      "best", "the largest V_s whose R_q is at most --rq-max with probability --confidence")(
+      "confidence", po::value(&confidence)->default_value("0.9"),
+      "for --best: P(R_q <= target) at least this (0.5: by the predicted mean)")(
       "rq-max", po::value(&rq_max), "wanted roughness for --best, e.g. 110um (a list gives one line each)")(
       "grid", po::value(&grid), "search grid for --best, e.g. 101x81");
   c.add(d);
@@ -109,7 +111,9 @@ int cmd_query(int argc, char **argv) {
     MapRequest rq;
     if (!grid.empty()) rq.points = parse_grid_points(grid, mapped_inputs(file));
     rq.rq_max = roughness_list(rq_max);
-    for (const auto &o : make_process_map(registry, file, rq).optima) print_optimum(o, file);
+    rq.confidence = parse_confidence(confidence, "--confidence");
+    const auto map = make_process_map(registry, file, rq);
+    for (const auto &o : map.optima) print_optimum(o, file, map);
     return 0;
   }
   if (at.empty()) throw InputError("error: query: give --at NAME=VALUE,... or --best --rq-max VALUE");

@@ -1,4 +1,5 @@
-// map: the process map of a trained model (by default the train stage's first) into map/.
+// map: the process map of a trained model (by default the train stage's first) into map/, with the
+// optimum for each roughness target chosen at a stated confidence (default 0.9).
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
@@ -23,8 +24,11 @@ class MapStage : public Stage {
     const YAML::Node &cfg = entry.config;
     for (const auto &kv : cfg) {
       const std::string k = kv.first.as<std::string>();
-      if (k != "model" && k != "grid" && k != "rq_max" && k != "render")
-        diag.error(Location::of(file, kv.first), "map." + k, "unknown key", "known: model, grid, rq_max, render");
+      if (k != "model" && k != "grid" && k != "rq_max" && k != "confidence" && k != "render") {
+        const std::string near = closest(k, {"model", "grid", "rq_max", "confidence", "render"});
+        diag.error(Location::of(file, kv.first), "map." + k, "unknown key",
+                   (near.empty() ? "" : "did you mean '" + near + "'? ") + "known: model, grid, rq_max, confidence, render");
+      }
     }
     std::vector<std::string> trained;  // by this workflow's train stage, when it has one
     for (const auto &s : wf.stages)
@@ -63,6 +67,14 @@ class MapStage : public Stage {
         }
       }
     }
+    if (const YAML::Node c = cfg["confidence"]) {
+      try {
+        confidence_ = parse_confidence(c.as<std::string>(), "map.confidence");
+      } catch (const std::exception &e) {
+        diag.error(Location::of(file, c), "map.confidence", e.what(),
+                   "the wanted P(R_q <= target) of the optimum, in [0.5, 1), e.g. 0.9");
+      }
+    }
     style_ = figures::read_style(cfg["render"], true, false, file, "map.render", diag);
     render_ = style_.on;
   }
@@ -77,21 +89,27 @@ class MapStage : public Stage {
     MapRequest rq;
     if (!grid_.empty()) rq.points = parse_grid_points(grid_, mapped_inputs(file));
     rq.rq_max = rq_max_;
+    rq.confidence = confidence_;
     const auto map = make_process_map(ctx.registry, file, rq);
     std::unique_ptr<analysis::Table> data;
     const fs::path data_csv = ctx.run.train_dir(model_) / "data.csv";
     if (fs::exists(data_csv)) data = std::make_unique<analysis::Table>(analysis::Table::read_csv(data_csv.string()));
     write_process_map(map, file, ctx.run.map_dir(), data.get(), render_);
+    for (const auto &t : map.trust)
+      if (t.untrusted()) spdlog::warn("map: the {} map is NOT TRUSTED: {}", t.output, t.reason);
+    const auto untrusted = map.untrusted_basis();
     for (const auto &o : map.optima) {
       if (!o.found) {
-        spdlog::warn("map: no setting on the grid reaches R_q <= {}", display(o.rq_max, "m"));
+        spdlog::warn("map: no setting on the grid reaches R_q <= {} with probability {:.2f}", display(o.rq_max, "m"),
+                     o.confidence);
         continue;
       }
-      std::string at;
-      for (std::size_t i = 0; i < file.inputs.size(); ++i)
-        at += (i ? ", " : "") + file.inputs[i].name + " = " + display(o.x(Eigen::Index(i)), file.inputs[i].unit);
-      spdlog::info("map: for R_q <= {}: {} gives V_s = {}, R_q = {}", display(o.rq_max, "m"), at,
-                   display(o.vs, "m^2/s"), display(o.rq, "m"));
+      spdlog::info("map: for R_q <= {} (confidence {:.2f}): {}", display(o.rq_max, "m"), o.confidence,
+                   describe_optimum(o, file));
+      if (!untrusted.empty())
+        spdlog::warn("map: that optimum rests on an untrusted map ({}): simulate more cases or replicates before "
+                     "setting a machine by it",
+                     join(untrusted));
     }
     spdlog::info("map: {} grid points in {}", map.grid.x.rows(), (ctx.run.map_dir() / "map.csv").string());
   }
@@ -99,6 +117,7 @@ class MapStage : public Stage {
  private:
   std::string model_, grid_;
   std::vector<double> rq_max_;
+  double confidence_ = default_confidence;
   figures::Style style_;
   bool render_ = true;
 };

@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <cmath>
+
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "analysis/multifidelity.hpp"
@@ -24,6 +26,34 @@ std::optional<std::size_t> output_index(const analysis::ModelFile &file, const s
   return std::nullopt;
 }
 
+std::vector<std::string> MapResult::untrusted_basis() const {
+  std::vector<std::string> out;
+  for (const auto &t : trust)
+    if (t.untrusted() && (t.output == "vs" || t.output == "rq")) out.push_back(t.output);
+  return out;
+}
+
+namespace {
+// The spread the confidence rule uses: the model's own predictive std, else (a model without
+// uncertainty, e.g. surrogate/bpnn) its cross-validated RMSE of R_q, the error it made on cases it
+// was not fitted to, taken as one normal spread for every point of the grid.
+analysis::OptimumRule optimum_rule(const analysis::ModelFile &file, const MapResult &m, double confidence) {
+  analysis::OptimumRule rule;
+  rule.confidence = confidence;
+  if (m.grid.prediction.std.size() > 0 || confidence == 0.5) return rule;
+  const auto &rq_trust = m.trust.at(*m.rq);
+  if (!std::isfinite(rq_trust.rmse_cv))
+    throw InputError(fmt::format(
+        "error: map: confidence {} needs the predictive spread of R_q, and {} gives none: its model.json holds no "
+        "cross-validated RMSE either ({}); set confidence: 0.5 to choose by the predicted mean, or retrain with "
+        "cross-validation (at least 4 rows)",
+        confidence, file.plugin, rq_trust.reason));
+  rule.fallback_rq_std = rq_trust.rmse_cv;
+  rule.std_source = "cross-validation";
+  return rule;
+}
+}  // namespace
+
 MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &file, const MapRequest &rq) {
   const auto model = load_model(registry, file);
   // A model of two fidelities answers for the expensive one: its fidelity input is held at 1, and
@@ -41,10 +71,15 @@ MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &
   }
   std::vector<std::string> outputs;
   for (const auto &o : file.outputs) outputs.push_back(o.name);
-  MapResult m{
-      analysis::evaluate_grid(*model, axes, outputs), output_index(file, "vs"), output_index(file, "rq"), {}, {}};
+  MapResult m{analysis::evaluate_grid(*model, axes, outputs),
+              output_index(file, "vs"),
+              output_index(file, "rq"),
+              {},
+              {},
+              analysis::judge_map_trust(file),
+              rq.confidence};
   if (m.vs && m.rq) {
-    m.optima = analysis::find_optima(m.grid, *m.vs, *m.rq, rq.rq_max);
+    m.optima = analysis::find_optima(m.grid, *m.vs, *m.rq, rq.rq_max, optimum_rule(file, m, rq.confidence));
     m.frontier = analysis::frontier(m.grid, *m.vs, *m.rq);
   } else if (!rq.rq_max.empty()) {
     throw InputError("error: map: an optimum needs outputs named vs and rq; this model has " + [&] {
@@ -67,8 +102,18 @@ void write_process_map(const MapResult &m, const analysis::ModelFile &file, cons
   nlohmann::json units = nlohmann::json::object();
   for (const auto &v : file.inputs) units[v.name] = v.unit;
   for (const auto &v : file.outputs) units[v.name] = v.unit;
-  write_atomic(dir / "optimum.json",
-               nlohmann::json({{"model", file.plugin}, {"units", units}, {"optima", optima}}).dump(2) + "\n");
+  nlohmann::json trust = nlohmann::json::object();
+  for (const auto &t : m.trust) trust[t.output] = t.to_json();
+  const auto untrusted = m.untrusted_basis();
+  for (auto &o : optima)
+    if (o.value("found", false)) o["rests_on_untrusted"] = untrusted;
+  write_atomic(dir / "optimum.json", nlohmann::json({{"model", file.plugin},
+                                                     {"units", units},
+                                                     {"confidence", m.confidence},
+                                                     {"trust", trust},
+                                                     {"optima", optima}})
+                                             .dump(2) +
+                                         "\n");
   if (m.vs && m.rq) m.frontier.write_csv((dir / "frontier.csv").string());
   if (!figures_on) return;
   std::vector<std::string> out_units;
@@ -76,7 +121,45 @@ void write_process_map(const MapResult &m, const analysis::ModelFile &file, cons
   figures::surfaces(m.grid, out_units, training ? *training : analysis::Table(), dir);
   if (m.vs && m.rq)
     figures::process_map(m.grid, *m.vs, *m.rq, m.frontier, m.optima, dir / "map.png",
-                         training ? *training : analysis::Table());
+                         training ? *training : analysis::Table(), -1, map_notes(m));
+}
+
+std::vector<std::string> map_notes(const MapResult &m) {
+  std::vector<std::string> notes;
+  for (const auto &t : m.trust)
+    if (t.untrusted() && (t.output == "vs" || t.output == "rq"))
+      notes.push_back(fmt::format("{} map NOT TRUSTED: cross-validated Q^2 = {:.2f} < {:.2f}",
+                                  t.output == "rq" ? "R_q" : "V_s", t.q2_cv, analysis::min_trusted_q2_cv));
+  return notes;
+}
+
+std::string describe_optimum(const analysis::Optimum &o, const analysis::ModelFile &file) {
+  std::string at;
+  for (std::size_t i = 0; i < file.inputs.size(); ++i)
+    at += (i ? ", " : "") + file.inputs[i].name + " = " + display(o.x(Eigen::Index(i)), file.inputs[i].unit);
+  std::string text = fmt::format("{}: V_s = {}, R_q = {}", at, display(o.vs, "m^2/s"), display(o.rq, "m"));
+  if (o.rq_std >= 0)
+    text += fmt::format(" +- {}, P(R_q <= {}) = {:.2f}", display(o.rq_std, "m"), display(o.rq_max, "m"), o.probability);
+  return text;
+}
+
+double parse_confidence(const std::string &text, const std::string &where) {
+  double value = 0;
+  try {
+    std::size_t used = 0;
+    value = std::stod(text, &used);
+    std::string rest = text.substr(used);
+    rest.erase(0, rest.find_first_not_of(' '));
+    if (rest == "%") value /= 100;
+    else if (!rest.empty()) throw std::invalid_argument("trailing text");
+  } catch (const std::exception &) {
+    throw InputError("error: " + where + ": '" + text + "' is not a probability; write e.g. 0.9 or 90 %");
+  }
+  if (!(value >= 0.5 && value < 1))
+    throw InputError(fmt::format("error: {}: {} is outside [0.5, 1): 0.5 chooses by the predicted mean, 0.9 asks "
+                                 "P(R_q <= target) >= 0.9",
+                                 where, text));
+  return value;
 }
 
 std::size_t mapped_inputs(const analysis::ModelFile &file) {

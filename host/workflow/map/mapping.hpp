@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "analysis/grid.hpp"
+#include "analysis/map_trust.hpp"
 #include "analysis/model_file.hpp"
 #include "analysis/optimum.hpp"
 #include "analysis/plugin_model.hpp"
@@ -19,9 +20,13 @@ namespace spreadmap {
 
 std::unique_ptr<analysis::PluginModel> load_model(PluginRegistry &registry, const analysis::ModelFile &file);
 
+// The optimum's default confidence: P(R_q <= target) of the chosen setting at least 0.9.
+constexpr double default_confidence = 0.9;
+
 struct MapRequest {
   std::vector<std::size_t> points;  // per input; empty = the default (101 x 81)
   std::vector<double> rq_max;       // wanted roughness values [m]
+  double confidence = default_confidence;
 };
 
 struct MapResult {
@@ -29,8 +34,14 @@ struct MapResult {
   std::optional<std::size_t> vs, rq;  // output columns of V_s and R_q, when the model has them
   std::vector<analysis::Optimum> optima;
   analysis::Table frontier;
+  std::vector<analysis::MapTrust> trust;  // one per output of the model
+  double confidence = default_confidence;  // the optimum rule's
+  // The outputs an optimum rests on (V_s chooses it, R_q bounds it) whose map is not trusted.
+  std::vector<std::string> untrusted_basis() const;
 };
 
+// Throws InputError when the request's confidence is above 0.5 and the model has no predictive spread
+// of R_q: neither its own std nor a cross-validated RMSE recorded by the train stage.
 MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &file, const MapRequest &request);
 // Writes map.csv, optimum.json, frontier.csv and (figures) map.png, surface_<output>.png into dir;
 // `training` (data.csv of the model) adds the simulated cases to the surfaces when given.
@@ -45,5 +56,11 @@ std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t 
 std::optional<std::size_t> output_index(const analysis::ModelFile &file, const std::string &name);
 // A value with its SI unit in display form: 3.3e-05 m^2/s -> "33.3 mm^2/s", 1.1e-4 m -> "110 um".
 std::string display(double value, const std::string &unit);
+// One line for each map (V_s, R_q) that cannot be trusted, for the figure and the log.
+std::vector<std::string> map_notes(const MapResult &map);
+// "U = 70 mm/s, omega = 0 rad/s: V_s = 33.1 mm^2/s, R_q = 104 um +- 2.1 um, P(R_q <= 110 um) = 0.93"
+std::string describe_optimum(const analysis::Optimum &optimum, const analysis::ModelFile &file);
+// A map confidence from text or YAML ("0.9", "90 %"); throws InputError naming `where` outside [0.5, 1).
+double parse_confidence(const std::string &text, const std::string &where);
 
 }  // namespace spreadmap

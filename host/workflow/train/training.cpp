@@ -197,7 +197,7 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   report.parity.write_csv((out_dir / "parity.csv").string());
   data.write_csv((out_dir / "data.csv").string());
   cv_table.write_csv((out_dir / "cv.csv").string());
-  if (figures_on) figures::parity(report, rq.outputs, out_dir / "parity.png");
+  if (figures_on) figures::parity(report, cv_table, rq.outputs, out_dir / "parity.png");
   return {std::move(file), std::move(report), std::move(data)};
 }
 

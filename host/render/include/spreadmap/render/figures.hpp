@@ -92,6 +92,7 @@ struct ParityPanel {
   Quantity quantity;
   std::vector<double> train_simulated, train_predicted;  // SI
   std::vector<double> test_simulated, test_predicted;    // SI
+  std::vector<double> cv_simulated, cv_predicted;        // SI, out-of-fold predictions of cross-validation
 };
 
 // One panel per output, side by side; Pearson R of each set is computed and shown in the legend.
@@ -108,6 +109,8 @@ struct Optimum {
   double u = 0, omega = 0;  // [m/s], [rad/s]
   double vs = 0, rq = 0;    // [m^2/s], [m]
   int verified = -1;        // -1: proposed only; 1: simulated inside its interval; 0: outside (verify stage)
+  double probability = -1;  // P(R_q <= target), shown when >= 0
+  double confidence = 0.5;  // the rule it was chosen by, shown above 0.5
 };
 
 // Fields over the (u, omega) grid, f[iw * u.size() + iu], SI units (V_s m^2/s, R_q m).
@@ -122,6 +125,9 @@ struct MapInput {
   std::vector<MapPoint> cases;                           // the simulated settings the model was trained on
   Optimum optimum;
   double rq_target = 0;  // [m], shown in the optimum label when > 0
+  // Maps that cannot be trusted: drawn grey, and `notes` (one line each) printed over the plot.
+  bool rq_greyed = false, vs_greyed = false;
+  std::vector<std::string> notes;
 };
 
 // The speed-accuracy trade (tradeoff stage): one point per fidelity, errors in per cent of the
