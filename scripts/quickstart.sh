@@ -6,14 +6,14 @@ set -eu
 cd "$(dirname "$0")/.."
 jobs="${SPREADMAP_BUILD_JOBS:-2}"
 start=$(date +%s)
-phase() { echo "== $1 (expect $2 on 2 cores; $(($(date +%s) - start)) s so far)"; }
+phase() { echo "== $1 (expect $2; $(($(date +%s) - start)) s so far)"; }
 
-phase "installing what is missing" "about 2 min on a fresh Debian 12, nothing otherwise"
+phase "installing what is missing" "about 1.5 min on a fresh Debian 12, none when installed"
 scripts/setup.sh
-phase "configuring and building the program and its plugins" "about 5 min the first time, seconds after"
+phase "configuring and building the program and its plugins" "about 4 min on 2 cores the first time, seconds after"
 cmake --preset release >/dev/null
 cmake --build build -j"$jobs" --target programs
-phase "running workflows/quickstart.yaml" "about 1 min"
+phase "running workflows/quickstart.yaml" "about 40 s on 2 cores"
 build/bin/spreadmap run workflows/quickstart.yaml --jobs "$jobs"
 echo "== done in $(($(date +%s) - start)) s"
 echo "the whole answer on one page: runs/quickstart/report.html (open it in a browser)"
