@@ -1,9 +1,12 @@
 #include "core/files.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
+#include <chrono>
+#include <cstdlib>
 #include <cerrno>
 #include <cstdio>
 #include <fstream>
@@ -142,6 +145,29 @@ std::string stable_hash(const std::string &text) {
   char buf[17];
   std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
   return buf;
+}
+
+}  // namespace spreadmap
+
+namespace spreadmap {
+
+std::size_t remove_stale_temporaries(const fs::path &folder) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  const auto now = fs::file_time_type::clock::now();
+  for (auto it = fs::recursive_directory_iterator(folder, fs::directory_options::skip_permission_denied, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const auto tag = name.find(".tmp-");
+    if (name.empty() || name[0] != '.' || tag == std::string::npos || !it->is_regular_file(ec)) continue;
+    // ".<name>.tmp-<pid>-...": a writer still alive keeps its temporary; so does one written in the last
+    // minute (its pid may be another host's, on a shared folder)
+    const long pid = std::strtol(name.c_str() + tag + 5, nullptr, 10);
+    const bool alive = pid > 0 && (::kill(static_cast<pid_t>(pid), 0) == 0 || errno == EPERM);
+    if (alive || now - it->last_write_time(ec) < std::chrono::minutes(1)) continue;
+    if (fs::remove(it->path(), ec)) ++removed;
+  }
+  return removed;
 }
 
 }  // namespace spreadmap

@@ -28,6 +28,10 @@ void write_atomic(const fs::path &path, std::string_view content);
 // write_atomic_with creates it exclusively, so two writers are never handed the same file.
 fs::path temporary_beside(const fs::path &path);
 
+// Removes, under `folder`, the temporaries of writes that never finished (their writer was killed):
+// those whose writer no longer runs here and that are over a minute old. Returns how many.
+std::size_t remove_stale_temporaries(const fs::path &folder);
+
 std::string read_text(const fs::path &path);  // throws InputError naming the file
 // 64-bit FNV-1a-style hash as 16 hex digits: stable across machines and versions (input hashes in the
 // manifest, heap file names). Its offset basis is 1469598103934665603, not FNV's 14695981039346656037:

@@ -13,7 +13,7 @@ namespace spreadmap::engine {
 
 namespace {
 constexpr char magic[16] = "spreadmap-ckpt";
-constexpr std::uint32_t format_version = 2;  // 2: sleeping (mobile, calm, the sleep region)
+constexpr std::uint32_t format_version = 3;  // 2: sleeping (mobile, calm, the sleep region); 3: checksum
 }  // namespace
 
 template <class Real> void Simulation<Real>::save_checkpoint(const std::filesystem::path &path) const {
@@ -61,7 +61,7 @@ template <class Real> void Simulation<Real>::save_checkpoint(const std::filesyst
     w.value<std::uint8_t>(ge.slot.touched);
     w.array(ge.slot.hist);
   }
-  write_atomic(path, w.bytes());
+  write_atomic(path, w.sealed());
 }
 
 template <class Real> void Simulation<Real>::load_checkpoint(const std::filesystem::path &path) {
@@ -70,7 +70,13 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   if (!in) throw SetupError(fmt::format("{}: cannot open the checkpoint for reading", path.string()));
   std::ostringstream all;
   all << in.rdbuf();
-  BinaryReader r(all.str(), path.string());
+  {  // magic and version first, unsealed: a foreign or older file is named so, not called damaged
+    BinaryReader head(all.str(), path.string());
+    for (char c : magic)
+      if (head.value<char>() != c) head.fail("wrong magic bytes");
+    if (head.value<std::uint32_t>() != format_version) head.fail("unknown format version");
+  }
+  BinaryReader r = BinaryReader::sealed(all.str(), path.string());
   for (char c : magic)
     if (r.value<char>() != c) r.fail("wrong magic bytes");
   if (r.value<std::uint32_t>() != format_version) r.fail("unknown format version");
@@ -131,6 +137,13 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   if (state_.list.start.size() != n + 1 || state_.list.start.back() != state_.list.nbr.size() ||
       state_.list.hist.size() != state_.list.nbr.size() * state_.pair_law.ops->history)
     r.fail("an inconsistent neighbour list");
+  // every index is checked before a loop trusts it: a neighbour beyond the particles is a crash
+  for (std::size_t i = 0; i < n; ++i)
+    if (state_.list.start[i] > state_.list.start[i + 1]) r.fail("a neighbour list whose rows run backwards");
+  for (const auto j : state_.list.nbr)
+    if (j >= n) r.fail(fmt::format("a neighbour index {} beyond the {} particles", j, n));
+  for (const auto j : p.list_index)
+    if (j != no_index && j >= n) r.fail(fmt::format("a list index {} beyond the {} particles", j, n));
   state_.list.restore_mirror(state_.settings.pairs_once, state_.pair_law.ops->history);
   fixed_ = std::size_t(std::count(p.inv_m.begin(), p.inv_m.end(), Real(0)));
   asleep_ = std::size_t(std::count(p.mobile.begin(), p.mobile.end(), Real(0))) - fixed_;

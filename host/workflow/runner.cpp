@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/error.hpp"
+#include "core/files.hpp"
 #include "core/suggest.hpp"
 #include "workflow/executors/executor_hook.hpp"
 #include "workflow/executors/local_executor.hpp"
@@ -74,6 +75,9 @@ int run_workflow(const fs::path &file, const RunOptions &given, PluginRegistry &
       m["scene"] = v.scene ? to_json(*v.scene) : nlohmann::json();
     });
   spdlog::info("run directory: {}", run.root().string());
+  if (options.records_manifest())
+    if (const auto n = remove_stale_temporaries(run.root()))
+      spdlog::info("removed {} temporary files of writes a killed run left unfinished", n);
   Scene scene = v.scene ? *v.scene : Scene{};  // a workflow without a scene has no stage that reads one
   StageContext ctx{v.wf, scene, run, registry, options};
   for (std::size_t i = 0; i < v.stages.size(); ++i) {

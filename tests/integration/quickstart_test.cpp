@@ -146,6 +146,35 @@ TEST_F(Quickstart, DrawsSnapshotHeightMapSurfacesParityAndMap) {
 }
 #endif
 
+#ifdef SPREADMAP_TEST_FIGURES
+// A figure lost to a kill or a full disk is drawn again by the next run: a case's snapshot by the
+// simulate stage (the case itself is not run again), a height map with its case's metrics.
+TEST_F(Quickstart, AMissingOrTornFigureIsDrawnAgain) {
+  ASSERT_EQ(status_, 0) << log_;
+  const RunLock lock;
+  const fs::path snapshot = run_dir / "cases/c002/snapshot.png", heightmap = run_dir / "cases/c003/heightmap.png";
+  const auto state = fs::last_write_time(run_dir / "cases/c002/state.vtp");
+  fs::remove(snapshot);
+  fs::resize_file(heightmap, fs::file_size(heightmap) / 2);
+  std::string out;
+  ASSERT_EQ(run("run " + std::string(SPREADMAP_SOURCE_DIR) +
+                    "/workflows/quickstart.yaml --only simulate,characterise --out " + run_dir.string(),
+                &out),
+            0)
+      << out;
+  EXPECT_NE(out.find("c002: snapshot.png is missing or torn; drawing it again"), std::string::npos) << out;
+  EXPECT_NE(out.find("0 to run, 9 finished already"), std::string::npos) << out;
+  EXPECT_NE(out.find("9 cases in metrics.csv (1 evaluated, 8 up to date)"), std::string::npos) << out;
+  EXPECT_EQ(fs::last_write_time(run_dir / "cases/c002/state.vtp"), state);
+  for (const auto &png : {snapshot, heightmap}) {
+    std::ifstream in(png, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    ASSERT_GT(bytes.size(), 20000u) << png;
+    EXPECT_EQ(bytes.substr(bytes.size() - 8, 4), "IEND") << png << " is whole again";
+  }
+}
+#endif
+
 TEST_F(Quickstart, ASecondRunRecomputesNothing) {
   ASSERT_EQ(status_, 0) << log_;
   const auto before = fs::last_write_time(run_dir / "cases/c004/state.vtp");

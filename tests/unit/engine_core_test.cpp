@@ -4,6 +4,7 @@
 #include "plugins/contact/hooke_slider/hooke_slider.hpp"
 #include "temporaries.hpp"
 
+#include <engine/binary_io.hpp>
 #include <engine/errors.hpp>
 #include <engine/stability.hpp>
 
@@ -12,6 +13,8 @@
 #include <unistd.h>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -334,6 +337,66 @@ TEST(EngineCheckpoint, ResumeIsBitwiseIdentical) {
   Simulation<double> truncated(scene.domain, bind(scene.pair), quiet());
   truncated.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind(scene.wall), true, "floor"});
   EXPECT_THROW(truncated.load_checkpoint(path), SetupError);
+  std::filesystem::remove(path);
+}
+
+// A checkpoint damaged after it was written is refused, naming the file, before any value of it is
+// used: a value edited in place (a position shifted by 1e-7 m, which would resume silently to another
+// result) by its checksum, and damage that keeps a valid checksum (a file rewritten by a faulty tool)
+// by the checks on every count and index: never a crash, never an index beyond the particles.
+TEST(EngineCheckpoint, DamageIsRefusedNamingTheFileNeverResumedNorACrash) {
+  const auto path = std::filesystem::temp_directory_path() / fmt::format("engine_ckpt_damage_{}.bin", ::getpid());
+  Scene<double> scene;
+  auto whole = scene.make();
+  whole.run_steps(300);
+  whole.save_checkpoint(path);
+  const double x0 = whole.arrays().x[0];
+  const std::string intact = [&] {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    return s.str();
+  }();
+  const auto write = [&](const std::string &bytes) { std::ofstream(path, std::ios::binary) << bytes; };
+  const auto load = [&] {
+    Simulation<double> sim(scene.domain, bind(scene.pair), quiet());
+    sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind(scene.wall), true, "floor"});
+    sim.load_checkpoint(path);
+  };
+  // the first particle's x shifted by 1e-7 m where it is stored
+  std::string shifted = intact;
+  const auto at = shifted.find(std::string(reinterpret_cast<const char *>(&x0), sizeof x0));
+  ASSERT_NE(at, std::string::npos);
+  const double moved = x0 + 1e-7;
+  std::memcpy(shifted.data() + at, &moved, sizeof moved);
+  write(shifted);
+  try {
+    load();
+    FAIL() << "a checkpoint with a shifted position was resumed";
+  } catch (const SetupError &e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("damaged"), std::string::npos) << e.what();
+  }
+  // damage under a valid checksum, one byte in every 61: each is refused or read, none crashes
+  const std::string payload = intact.substr(0, intact.size() - sizeof(std::uint64_t));
+  std::size_t refused = 0, read = 0;
+  for (std::size_t i = 20; i < payload.size(); i += 61) {
+    std::string damaged = payload;
+    damaged[i] = static_cast<char>(~damaged[i]);
+    const std::uint64_t sum = checksum(damaged.data(), damaged.size());
+    damaged.append(reinterpret_cast<const char *>(&sum), sizeof sum);
+    write(damaged);
+    try {
+      load();
+      ++read;
+    } catch (const SetupError &) {
+      ++refused;
+    }
+  }
+  EXPECT_GT(refused, 0u);
+  EXPECT_GT(refused + read, 100u);
+  write(intact);
+  EXPECT_NO_THROW(load());
   std::filesystem::remove(path);
 }
 

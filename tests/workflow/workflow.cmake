@@ -25,6 +25,9 @@ endfunction()
 spreadmap_workflow_test(catalogue SOURCES ${CMAKE_CURRENT_LIST_DIR}/catalogue_test.cpp TIMEOUT 120)
 spreadmap_workflow_test(cli SOURCES ${CMAKE_CURRENT_LIST_DIR}/cli_test.cpp TIMEOUT 120)
 spreadmap_workflow_test(resume SOURCES ${CMAKE_CURRENT_LIST_DIR}/resume_test.cpp TIMEOUT 600)
+# What a run reads back is checked: damaged checkpoints and heaps, replaced states, stale temporaries.
+spreadmap_workflow_test(read_back SOURCES ${CMAKE_CURRENT_LIST_DIR}/read_back_test.cpp TIMEOUT 600)
+target_link_libraries(test_workflow_read_back PRIVATE spreadmap_core)  # stable_hash
 spreadmap_workflow_test(plugin_sdk SOURCES ${CMAKE_CURRENT_LIST_DIR}/plugin_sdk_test.cpp TIMEOUT 300)
 # The engine as a library: examples/engine_two_spheres built against the installed package and run.
 spreadmap_workflow_test(engine_library SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_library_test.cpp TIMEOUT 300)

@@ -72,6 +72,7 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
                         {"warnings", r.warnings}};
   if (layer) doc["layer"] = layer;
   if (!r.profiles.is_null()) doc["profiles"] = r.profiles;  // metrics.json only: metrics.csv holds scalars
+  doc["digest"] = stable_hash(doc.dump());  // of everything else: what a later run checks before trusting it
   write_atomic(dir / "metrics.json", doc.dump(2) + "\n");
   if (settings.render) {
     const auto m = r.metrics;
@@ -133,6 +134,18 @@ CharacteriseSettings read_characterise_settings(const Workflow &wf, const YAML::
   return s;
 }
 
+namespace {
+// True when metrics.json's digest is that of the rest of it: the metrics it holds are those computed.
+bool sealed(nlohmann::json doc) {
+  const auto it = doc.find("digest");
+  if (it == doc.end() || !it->is_string()) return false;
+  const std::string digest = *it;
+  doc.erase("digest");
+  return stable_hash(doc.dump()) == digest;
+}
+
+}  // namespace
+
 std::string settings_hash(const CharacteriseSettings &s) {
   const Region &r = s.region;
   return stable_hash(s.request.params.dump() + nlohmann::json({r.x0, r.x1, r.y0, r.y1}).dump() + s.request.plugin +
@@ -147,6 +160,14 @@ nlohmann::json case_metrics(PluginRegistry &registry, const CharacteriseSettings
     try {
       doc = nlohmann::json::parse(read_text(out));
       if (doc.value("key", "") != key) doc = nullptr;
+      else if (!sealed(doc)) {
+        spdlog::warn("{}: {} changed since it was written (its digest does not match); measuring again", id,
+                     out.string());
+        doc = nullptr;
+      }
+      // a height-map figure lost to a kill or a full disk is drawn again with its metrics
+      const fs::path png = (layer ? dir / layer_folder(layer) : dir) / "heightmap.png";
+      if (settings.render && figures::available() && !figures::whole_png(png)) doc = nullptr;
     } catch (...) {
       doc = nullptr;
     }

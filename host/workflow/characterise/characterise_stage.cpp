@@ -22,12 +22,24 @@
 #include "workflow/characterise/bed_thickness.hpp"
 #include "workflow/characterise/case_metrics.hpp"
 #include "workflow/scene/substrate_roughness.hpp"
+#include "workflow/simulate/case_runner.hpp"
 #include "workflow/simulate/case_setup.hpp"
 #include "workflow/simulate/layer_feed.hpp"
 #include "workflow/stage.hpp"
 
 namespace spreadmap {
 namespace {
+
+// The hash of the state a row measures, as its record (case.json, or layer.json of a layer) keeps it;
+// "" for a record written before states were fingerprinted.
+std::string state_fingerprint(const fs::path &case_dir, int layer) {
+  const fs::path record = layer ? case_dir / layer_folder(layer) / "layer.json" : case_dir / "case.json";
+  try {
+    return nlohmann::json::parse(read_text(record)).value("state_hash", "");
+  } catch (const std::exception &) {
+    return "";
+  }
+}
 
 class CharacteriseStage : public Stage {
  public:
@@ -73,8 +85,10 @@ class CharacteriseStage : public Stage {
       const int layers = static_cast<int>(scene.layers.count);
       const std::size_t first = results.size();
       for (int layer = layers > 1 ? 1 : 0; layer <= (layers > 1 ? layers : 0); ++layer) {
-        const std::string key =
-            stable_hash(settings + c.value("hash", "") + (layer ? "/layer " + std::to_string(layer) : ""));
+        // the key rests on the measured state's own hash, so a state simulated again (after a heap or
+        // a checkpoint was found damaged, say) is measured again, never described by old metrics
+        const std::string key = stable_hash(settings + c.value("hash", "") + state_fingerprint(dir, layer) +
+                                            (layer ? "/layer " + std::to_string(layer) : ""));
         bool now = false;
         nlohmann::json doc = case_metrics(ctx.registry, settings_, dir, id, key, ctx.options.force, now, layer);
         evaluated += now;

@@ -44,6 +44,20 @@ void draw_snapshot(const CaseRequest &req, const nlohmann::json &c) {
   }
 }
 
+}  // namespace
+
+void redraw_missing_snapshot(const CaseRequest &req) {
+  if (!figures::available() || figures::whole_png(req.dir / "snapshot.png")) return;
+  try {
+    spdlog::info("{}: snapshot.png is missing or torn; drawing it again", req.id);
+    draw_snapshot(req, nlohmann::json::parse(read_text(req.dir / "case.json")));
+  } catch (const std::exception &e) {
+    spdlog::warn("{}: snapshot not drawn: {}", req.id, e.what());
+  }
+}
+
+namespace {
+
 // Which backend this process's cases run on, said once by each process that runs cases (every MPI
 // rank and Slurm task for itself). The stage has already refused a backend that cannot be honoured.
 void say_backend_once(const Scene &scene) {

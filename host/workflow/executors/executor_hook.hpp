@@ -67,6 +67,9 @@ CaseOutcome outcome_from_json(const nlohmann::json &j);
 // Runs one case in this process (and draws its snapshot when asked). Never throws for a failed
 // case: the failure is in the outcome, so that a worker can report it and go on.
 CaseOutcome run_case_job(const CaseJob &job, PluginRegistry &registry);
+// A finished case whose snapshot.png is missing or torn (a kill or a full disk between case.json and
+// the figure) gets it drawn again from its state and record.
+void redraw_missing_snapshot(const CaseRequest &req);
 
 // Marks the outcome failed by `e`, with its exit code (an Error's, else exit_failure).
 void set_failure(CaseOutcome &outcome, const std::exception &e);

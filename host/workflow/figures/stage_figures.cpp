@@ -11,6 +11,8 @@
 #include <spreadmap/render/figures.hpp>
 #endif
 
+#include <fstream>
+
 #include "workflow/map/mapping.hpp"
 #include "workflow/figures/figure_style.hpp"
 
@@ -26,6 +28,15 @@ std::string case_title(const std::string &id, const nlohmann::json &inputs) {
     sep = ", ";
   }
   return t;
+}
+
+bool whole_png(const fs::path &png) {
+  std::ifstream in(png, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  // the 8-byte signature first, the IEND chunk (its type and fixed CRC) last: a torn write lacks it
+  static const std::string signature = "\x89PNG\r\n\x1a\n", end = std::string("IEND\xae\x42\x60\x82", 8);
+  return bytes.size() > signature.size() + end.size() && bytes.compare(0, signature.size(), signature) == 0 &&
+         bytes.compare(bytes.size() - end.size(), end.size(), end) == 0;
 }
 
 #ifndef SPREADMAP_WITH_RENDER

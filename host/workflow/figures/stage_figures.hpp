@@ -18,6 +18,9 @@ namespace spreadmap::figures {
 namespace fs = std::filesystem;
 
 bool available();
+// A PNG written whole: its signature first and its IEND chunk last (a missing, torn or foreign file is
+// not). Stages redraw a figure that is not.
+bool whole_png(const fs::path &png);
 
 // "c004: U = 70 mm/s, omega = 0 rad/s" from a case's design inputs (SI), for figure titles.
 std::string case_title(const std::string &id, const nlohmann::json &inputs);

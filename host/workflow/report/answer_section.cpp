@@ -28,7 +28,7 @@ std::vector<std::string> optimum_row(const json &o, const json &units) {
 }
 }  // namespace
 
-Section answer_section(const fs::path &run) {
+PageSection answer_section(const fs::path &run) {
   const json optimum = read_json(run / "map" / "optimum.json");
   if (!optimum.is_object()) return {"answer", "The answer", ""};
   const json units = member(optimum, "units");
@@ -38,7 +38,7 @@ Section answer_section(const fs::path &run) {
       body += warning("The " + metric_label(name) + " map is NOT TRUSTED: " + t.value("reason", "") +
                       ". Its contours, and any optimum resting on it, are the surrogate's guess: simulate more "
                       "cases or replicates before setting a machine by them.");
-  html::Table table({"target R_q", "setting", "V_s", "R_q (± std)", "P(R_q ≤ target)", "confidence asked", ""});
+  html::HtmlTable table({"target R_q", "setting", "V_s", "R_q (± std)", "P(R_q ≤ target)", "confidence asked", ""});
   for (const auto &o : member(optimum, "optima")) table.add(optimum_row(o, units));
   body += "<div class=\"scroll\">" + table.str() + "</div>\n";
   body += paragraph("Each optimum is the largest V_s whose probability of meeting its R_q target, under the "

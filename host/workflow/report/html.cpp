@@ -52,12 +52,12 @@ std::string inline_png(const std::filesystem::path &png, const std::string &alt,
          (css_class.empty() ? "" : " class=\"" + css_class + "\"") + "/>";
 }
 
-Table::Table(std::vector<std::string> header, std::string css_class)
+HtmlTable::HtmlTable(std::vector<std::string> header, std::string css_class)
     : header_(std::move(header)), class_(std::move(css_class)) {}
 
-void Table::add(std::vector<std::string> cells) { rows_.push_back(std::move(cells)); }
+void HtmlTable::add(std::vector<std::string> cells) { rows_.push_back(std::move(cells)); }
 
-std::string Table::str() const {
+std::string HtmlTable::str() const {
   std::string out = class_.empty() ? "<table>\n<thead><tr>" : "<table class=\"" + class_ + "\">\n<thead><tr>";
   for (const auto &h : header_) out += "<th>" + escape(h) + "</th>";
   out += "</tr></thead>\n<tbody>\n";

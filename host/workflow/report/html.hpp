@@ -13,9 +13,9 @@ std::string base64(const std::string &bytes);
 std::string inline_png(const std::filesystem::path &png, const std::string &alt, const std::string &css_class = "");
 
 // A table: cells are HTML (escape text yourself), the header row is text.
-class Table {
+class HtmlTable {
  public:
-  explicit Table(std::vector<std::string> header, std::string css_class = "");
+  explicit HtmlTable(std::vector<std::string> header, std::string css_class = "");
   void add(std::vector<std::string> cells);
   bool empty() const { return rows_.empty(); }
   std::string str() const;

@@ -23,7 +23,7 @@ std::string verdict(const json &o) {
 std::string model_scores(const fs::path &dir) {
   const json report = read_json(dir / "report.json");
   if (!report.is_object()) return "";
-  html::Table table({"output", "NRMSE train", "NRMSE test", "NRMSE cross-validated (± sd over folds)", "R train",
+  html::HtmlTable table({"output", "NRMSE train", "NRMSE test", "NRMSE cross-validated (± sd over folds)", "R train",
                      "R test", "R cross-validated", "Q² cross-validated", "map"});
   for (const auto &o : member(report, "outputs"))
     table.add({html::escape(metric_label(o.value("name", ""))), percent(o, "nrmse_train"), percent(o, "nrmse_test"),
@@ -40,7 +40,7 @@ std::string model_scores(const fs::path &dir) {
 }
 }  // namespace
 
-Section surrogates_section(const fs::path &run) {
+PageSection surrogates_section(const fs::path &run) {
   if (!fs::is_directory(run / "train")) return {"surrogates", "Surrogates", ""};
   std::string body = paragraph(fmt::format(
       "NRMSE is the root-mean-square error over the range of the true values. The cross-validated figures are "
@@ -58,7 +58,7 @@ Section surrogates_section(const fs::path &run) {
   return {"surrogates", "Surrogates and their accuracy", body};
 }
 
-Section map_section(const fs::path &run) {
+PageSection map_section(const fs::path &run) {
   std::string body;
   for (const char *m : {"vs", "rq"})
     body += figure(run / "map" / (std::string("surface_") + m + ".png"),
@@ -67,7 +67,7 @@ Section map_section(const fs::path &run) {
   return {"map", "Response surfaces", "<div class=\"figures\">" + body + "</div>\n"};
 }
 
-Section verify_section(const fs::path &run) {
+PageSection verify_section(const fs::path &run) {
   const json v = read_json(run / "map" / "verified.json");
   if (!v.is_object()) return {"verify", "Verification", ""};
   std::string body = v.value("verified", false)

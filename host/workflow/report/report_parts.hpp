@@ -13,7 +13,7 @@ namespace spreadmap::report {
 
 namespace fs = std::filesystem;
 
-struct Section {
+struct PageSection {
   std::string id, title, body;  // empty body: nothing to show yet
 };
 

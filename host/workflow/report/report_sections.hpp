@@ -7,12 +7,12 @@
 
 namespace spreadmap::report {
 
-Section answer_section(const fs::path &run);  // the optimum of each target, its probability, map.png
-Section scene_section(const nlohmann::json &manifest);
-Section cases_section(const fs::path &run, const nlohmann::json &manifest);  // with metrics and snapshots
-Section surrogates_section(const fs::path &run);  // Table 4 form, trust verdicts, parity plots
-Section map_section(const fs::path &run);         // response surfaces
-Section verify_section(const fs::path &run);
-Section provenance_section(const fs::path &run, const nlohmann::json &manifest);
+PageSection answer_section(const fs::path &run);  // the optimum of each target, its probability, map.png
+PageSection scene_section(const nlohmann::json &manifest);
+PageSection cases_section(const fs::path &run, const nlohmann::json &manifest);  // with metrics and snapshots
+PageSection surrogates_section(const fs::path &run);  // Table 4 form, trust verdicts, parity plots
+PageSection map_section(const fs::path &run);         // response surfaces
+PageSection verify_section(const fs::path &run);
+PageSection provenance_section(const fs::path &run, const nlohmann::json &manifest);
 
 }  // namespace spreadmap::report

@@ -18,7 +18,7 @@ fs::path write_run_report(const fs::path &run) {
     throw InputError("error: report: " + run.string() +
                      " holds no readable manifest.json: give the run directory a workflow wrote, e.g. runs/quickstart");
   const std::string name = report::member(manifest, "workflow").value("name", run.filename().string());
-  const std::vector<report::Section> sections = {
+  const std::vector<report::PageSection> sections = {
       report::answer_section(run),   report::scene_section(manifest),  report::cases_section(run, manifest),
       report::surrogates_section(run), report::map_section(run),        report::verify_section(run),
       report::provenance_section(run, manifest)};

@@ -18,7 +18,7 @@ namespace spreadmap::report {
 using nlohmann::json;
 
 namespace {
-void flatten(const json &j, const std::string &prefix, html::Table &table) {
+void flatten(const json &j, const std::string &prefix, html::HtmlTable &table) {
   if (j.is_object()) {
     for (const auto &[k, v] : j.items()) flatten(v, prefix.empty() ? k : prefix + "." + k, table);
     return;
@@ -41,13 +41,13 @@ std::string host_name() {
 }
 }  // namespace
 
-Section scene_section(const json &manifest) {
+PageSection scene_section(const json &manifest) {
   std::string body;
   const std::string file = member(manifest, "workflow").value("file", "");
   if (!file.empty() && fs::is_regular_file(file))
     body += "<h3>The workflow as written</h3>\n<pre>" + html::escape(read_text(file)) + "</pre>\n";
   if (manifest.contains("scene") && manifest["scene"].is_object()) {
-    html::Table table({"key", "value (SI: m, s, kg, Pa, N)"}, "keys");
+    html::HtmlTable table({"key", "value (SI: m, s, kg, Pa, N)"}, "keys");
     flatten(manifest["scene"], "", table);
     body += "<details><summary>The scene as resolved, every key (SI units)</summary>\n<div class=\"scroll\">" +
             table.str() + "</div></details>\n";
@@ -55,7 +55,7 @@ Section scene_section(const json &manifest) {
   return {"scene", "Scene and powder", body};
 }
 
-Section cases_section(const fs::path &run, const json &manifest) {
+PageSection cases_section(const fs::path &run, const json &manifest) {
   const json cases = member(manifest, "cases");
   if (cases.empty()) return {"cases", "Cases", ""};
   const auto metrics = read_table(run / "metrics.csv");
@@ -68,7 +68,7 @@ Section cases_section(const fs::path &run, const json &manifest) {
   header.insert(header.end(), {"status", "wall time"});
   for (const auto &m : shown_metrics) header.push_back(metric_label(m));
   header.push_back("snapshot");
-  html::Table table(header);
+  html::HtmlTable table(header);
   for (const auto &c : cases) {
     const std::string id = c.value("id", "");
     std::vector<std::string> row = {html::escape(id)};
@@ -92,8 +92,8 @@ Section cases_section(const fs::path &run, const json &manifest) {
   return {"cases", "Cases, their layers and snapshots", body};
 }
 
-Section provenance_section(const fs::path &run, const json &manifest) {
-  html::Table table({"what", "value"}, "keys");
+PageSection provenance_section(const fs::path &run, const json &manifest) {
+  html::HtmlTable table({"what", "value"}, "keys");
   table.add({"spreadmap", html::escape(std::string(SPREADMAP_VERSION) + " (plugin ABI " +
                                        std::to_string(SPREADMAP_PLUGIN_ABI) + ")")});
   const json wf = member(manifest, "workflow");

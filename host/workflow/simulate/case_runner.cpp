@@ -44,14 +44,23 @@ template <class Real> ParticleSet settled_heap(const Scene &scene, PluginRegistr
   }
   std::lock_guard<std::mutex> g(*lock);  // one case settles; the others wait and reuse it
   const fs::path file = req.heaps / ("heap_" + key + ".vtp");
+  // The heap is sealed by the hash of its file (heap_<key>.hash, written after it): a heap changed or
+  // damaged since is settled again, never reused, so no case starts from a heap that no longer is.
+  const fs::path seal = req.heaps / ("heap_" + key + ".hash");
   if (fs::exists(file)) {
-    spdlog::debug("{}: reusing settled heap {}", req.id, file.string());
-    return engine::read_vtp(file).particles;
+    const std::string text = read_text(file);
+    if (fs::exists(seal) && read_text(seal) == stable_hash(text)) {
+      spdlog::debug("{}: reusing settled heap {}", req.id, file.string());
+      return engine::read_vtp(file).particles;
+    }
+    spdlog::warn("{}: the settled heap {} {}; settling it again", req.id, file.string(),
+                 fs::exists(seal) ? "changed since it was written (its hash does not match)" : "has no hash beside it");
   }
   ParticleSet heap = settle_heap<Real>(scene, reg, req.id, req.dir / "scene.json", [&req](double f) {
     if (req.progress) req.progress(0.1 * f, "settling");
   });
   engine::write_vtp(file, heap, 0.0);
+  write_atomic(seal, stable_hash(read_text(file)));
   return heap;
 }
 

@@ -73,7 +73,10 @@ class SimulateStage : public Stage {
       const std::string hash = case_hash(req.scene);
       cases.push_back({{"id", req.id}, {"inputs", req.inputs}, {"hash", hash}});
       if (replicates_ > 1) cases.back()["point"] = RunDirectory::case_id(point), cases.back()["replicate"] = replicate;
-      if (!ctx.options.force && case_finished(req.dir, hash)) continue;
+      if (!ctx.options.force && case_finished(req.dir, hash)) {
+        if (render_) redraw_missing_snapshot(req);
+        continue;
+      }
       if (ctx.options.force) {
         std::error_code ec;
         fs::remove(req.dir / "checkpoint.bin", ec);
