@@ -59,3 +59,6 @@ endif()
 # A heap spread onto a rough substrate (scene.substrate.roughness), through the binary.
 spreadmap_workflow_test(rough_substrate SOURCES ${CMAKE_CURRENT_LIST_DIR}/rough_substrate_test.cpp TIMEOUT 300)
 target_link_libraries(test_workflow_rough_substrate PRIVATE spreadmap_workflow)
+# Issue 37, nothing lost, nothing stale, nothing crashes: the run directory lock, models predicting
+# NaN, messages of bad options, a full disk.
+spreadmap_workflow_test(integrity SOURCES ${CMAKE_CURRENT_LIST_DIR}/integrity_test.cpp TIMEOUT 300)
