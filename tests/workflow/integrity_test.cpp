@@ -1,12 +1,15 @@
 // Nothing lost, nothing stale, nothing crashes (issue 37), through the real binary: one writer per
-// run directory (the flock on <run>/.lock).
+// run directory (the flock on <run>/.lock); a model whose predictions are NaN or infinite is refused
+// by query, map and the map stage, which write nothing.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/file.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <fstream>
+#include <regex>
 
 #include "workflow/process.hpp"
 #include "workflow/run_files.hpp"
@@ -45,6 +48,43 @@ pid_t exited_pid() {
   if (child == 0) ::_exit(0);
   ::waitpid(child, nullptr, 0);
   return child;
+}
+
+// A GP trained by `spreadmap train` on a smooth 5 x 5 table of (U, omega) -> (vs, rq): <dir>/gp/model.json.
+fs::path trained_gp(const fs::path &dir) {
+  fs::create_directories(dir);
+  {
+    std::ofstream csv(dir / "data.csv");
+    csv.precision(17);
+    csv << "case,U,omega,vs,rq\n";
+    for (int i = 0; i < 5; ++i)
+      for (int k = 0; k < 5; ++k) {
+        const double u = 0.04 + 0.015 * i, w = -20 + 10.0 * k;
+        csv << "c" << i * 5 + k << "," << u << "," << w << "," << u * 250e-6 * (1 + 0.1 * std::tanh(w / 15)) << ","
+            << 100e-6 * (1 + 0.05 * std::sin(w / 7) + 0.3 * u) << "\n";
+      }
+  }
+  const auto r = cli({"train", (dir / "data.csv").string(), "--inputs", "U,omega", "--model", "gp", "--out",
+                            (dir / "gp").string(), "--no-figures"});
+  EXPECT_EQ(r.exit_code, 0) << r.describe();
+  return dir / "gp" / "model.json";
+}
+
+// The model with a signal variance of e^(1e308): a valid file whose every prediction is NaN.
+void damage(const fs::path &model) {
+  auto j = t::json_file(model);
+  j["state"]["theta"][0][0] = 1e308;
+  std::ofstream(model) << j.dump(1);
+}
+
+void expect_refused_model(const t::Outcome &r, const fs::path &model) {
+  ASSERT_TRUE(r.exited) << r.describe();
+  EXPECT_EQ(r.exit_code, 2) << r.describe();
+  EXPECT_EQ(t::crash_marker(r.err), "") << r.describe();
+  EXPECT_TRUE(t::contains(r.err, "error: " + model.string() + ": the model's prediction of vs is not a finite number"))
+      << r.err;
+  EXPECT_TRUE(t::contains(r.err, "train it again")) << r.err;
+  EXPECT_FALSE(std::regex_search(r.out, std::regex("nan|inf", std::regex::icase))) << r.out;
 }
 
 std::string hostname() {
@@ -105,4 +145,35 @@ TEST(Integrity, TheLockOfAnExitedRunIsTakenOver) {
   EXPECT_TRUE(t::contains(ran.err, "taking over the lock of pid " + std::to_string(dead) + ", which has exited"))
       << ran.err;
   fs::remove_all(run);
+}
+
+TEST(Integrity, AModelPredictingNaNIsRefusedByQueryMapAndTheMapStage) {
+  const fs::path dir = t::fresh_run_directory("spreadmap_nan_model");
+  const fs::path model = trained_gp(dir);
+  ASSERT_TRUE(fs::exists(model));
+  const fs::path run = dir / "run";
+  fs::create_directories(run / "train/gp");
+  fs::copy_file(model, run / "train/gp/model.json");
+  {
+    // reading a model does not wait for the run that holds its directory
+    HeldLock writer(run, LOCK_EX, "node17 4242");
+    const auto good = cli({"query", (run / "train/gp/model.json").string(), "--at", "U=70mm/s,omega=0rad/s"});
+    EXPECT_EQ(good.exit_code, 0) << good.describe();
+    EXPECT_TRUE(t::contains(good.out, "vs")) << good.out;
+  }
+  damage(model);
+  damage(run / "train/gp/model.json");
+  expect_refused_model(cli({"query", model.string(), "--at", "U=70mm/s,omega=0rad/s"}), model);
+  expect_refused_model(cli({"query", model.string(), "--best", "--rq-max", "110um"}), model);
+  expect_refused_model(cli({"map", model.string(), "--grid", "11x11", "--out", (dir / "map").string(),
+                                  "--no-figures"}),
+                       model);
+  EXPECT_FALSE(fs::exists(dir / "map/map.csv"));
+  EXPECT_FALSE(fs::exists(dir / "map/optimum.json"));
+  const fs::path workflow = fs::path(SPREADMAP_SOURCE_DIR) / "tests/workflow/data/integrity/map_only.yaml";
+  expect_refused_model(cli({"run", workflow.string(), "--out", run.string(), "--only", "map"}),
+                       run / "train/gp/model.json");
+  EXPECT_FALSE(fs::exists(run / "map/map.csv"));
+  EXPECT_FALSE(fs::exists(run / "map/optimum.json"));
+  if (!::testing::Test::HasFailure()) fs::remove_all(dir);
 }

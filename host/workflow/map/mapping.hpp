@@ -17,7 +17,9 @@
 
 namespace spreadmap {
 
-std::unique_ptr<analysis::PluginModel> load_model(PluginRegistry &registry, const analysis::ModelFile &file);
+// The model of a model.json, ready to predict. Its predictions are checked: a NaN or infinite one (a
+// damaged state, e.g. a GP length scale of 1e308) throws InputError naming the file, never a number.
+std::unique_ptr<analysis::Model> load_model(PluginRegistry &registry, const analysis::ModelFile &file);
 
 struct MapRequest {
   std::vector<std::size_t> points;  // per input; empty = the default (101 x 81)
