@@ -129,6 +129,9 @@ void write_atomic(const fs::path &path, std::string_view content) {
 }
 
 std::string read_text(const fs::path &path) {
+  std::error_code ec;
+  // a folder opens as a stream that reads as empty: say what it is instead
+  if (fs::is_directory(path, ec)) throw InputError("error: " + path.string() + " is a directory; give a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("error: cannot read " + path.string() + ": no such file or not readable");
   std::ostringstream s;

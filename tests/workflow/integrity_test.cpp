@@ -1,6 +1,7 @@
 // Nothing lost, nothing stale, nothing crashes (issue 37), through the real binary: one writer per
 // run directory (the flock on <run>/.lock); a model whose predictions are NaN or infinite is refused
-// by query, map and the map stage, which write nothing.
+// by query, map and the map stage, which write nothing; numeric options read as their types, error
+// lists capped, and --out or a workflow that cannot be what they must be named with the fix.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/file.h>
@@ -176,4 +177,81 @@ TEST(Integrity, AModelPredictingNaNIsRefusedByQueryMapAndTheMapStage) {
   EXPECT_FALSE(fs::exists(run / "map/map.csv"));
   EXPECT_FALSE(fs::exists(run / "map/optimum.json"));
   if (!::testing::Test::HasFailure()) fs::remove_all(dir);
+}
+
+TEST(Integrity, NegativeNumbersAreNotReadAsHugeOnes) {
+  const fs::path run = t::fresh_run_directory("spreadmap_case_minus_one");
+  const auto r = cli({"run", one_case.string(), "--out", run.string(), "--case", "-1"});
+  EXPECT_EQ(r.exit_code, 2) << r.describe();
+  EXPECT_TRUE(t::contains(r.err, "error: --case -1: not a case number; cases are numbered from 0 (case 7 is c007)"))
+      << r.err;
+  EXPECT_FALSE(t::contains(r.err + r.out, "18446744073709551615")) << r.err;
+  EXPECT_FALSE(fs::exists(run)) << "refused before the run directory";
+  for (const char *bad : {"x", "1.5", "", "99999999999999999999999"}) {
+    const auto b = cli({"run", one_case.string(), "--out", run.string(), "--case", bad});
+    EXPECT_EQ(b.exit_code, 2) << b.describe();
+    EXPECT_TRUE(t::contains(b.err, std::string("error: --case ") + bad + ": not a case number")) << b.err;
+  }
+  const auto beyond = cli({"run", one_case.string(), "--out", run.string(), "--case", "5"});
+  EXPECT_EQ(beyond.exit_code, 2) << beyond.describe();
+  EXPECT_TRUE(t::contains(beyond.err, "error: --case 5: the design has 1 cases, numbered 0 to 0")) << beyond.err;
+  const auto folds = cli({"train", "x.csv", "--inputs", "U", "--folds", "-2"});
+  EXPECT_EQ(folds.exit_code, 2) << folds.describe();
+  EXPECT_TRUE(t::contains(folds.err, "error: --folds -2: not a number of folds")) << folds.err;
+  fs::remove_all(run);
+}
+
+TEST(Integrity, TenThousandErrorsPrintFiftyAndTheCount) {
+  const fs::path dir = t::fresh_run_directory("spreadmap_many_errors");
+  fs::create_directories(dir);
+  {
+    std::ofstream wf(dir / "many.yaml");
+    wf << t::slurp(one_case);
+    for (int i = 0; i < 10000; ++i) wf << "unknown_key_" << i << ": 1\n";
+  }
+  for (const std::string command : {"validate", "run"}) {
+    std::vector<std::string> args = {command, (dir / "many.yaml").string()};
+    if (command == "run") args.insert(args.end(), {"--out", (dir / "run").string()});
+    const auto r = cli(args);
+    EXPECT_EQ(r.exit_code, 2) << r.describe();
+    EXPECT_LT(r.err.size(), 20000u) << command;
+    const std::string tail = "... and 9950 more errors (fix these and run again to see them)\n";
+    ASSERT_GE(r.err.size(), tail.size()) << r.err;
+    EXPECT_EQ(r.err.substr(r.err.size() - tail.size()), tail) << command;
+    EXPECT_TRUE(t::contains(r.err, ": unknown_key_49: unknown key")) << r.err.substr(0, 2000);
+    EXPECT_FALSE(t::contains(r.err, "unknown_key_50:")) << command;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(Integrity, AnOutThatCannotBeAFolderIsNamedWithTheFix) {
+  const fs::path dir = t::fresh_run_directory("spreadmap_bad_out");
+  fs::create_directories(dir);
+  std::ofstream(dir / "a_file") << "not a folder\n";
+  const auto file = cli({"run", one_case.string(), "--out", (dir / "a_file").string()});
+  EXPECT_EQ(file.exit_code, 2) << file.describe();
+  EXPECT_TRUE(t::contains(file.err, "error: --out " + (dir / "a_file").string() +
+                                        ": is a file, not a folder; give a new folder or an earlier run's directory"))
+      << file.err;
+  EXPECT_EQ(t::slurp(dir / "a_file"), "not a folder\n");
+  const auto below = cli({"run", one_case.string(), "--out", (dir / "a_file/run").string()});
+  EXPECT_EQ(below.exit_code, 2) << below.describe();
+  EXPECT_TRUE(t::contains(below.err, "error: --out " + (dir / "a_file/run").string() +
+                                         ": cannot create the folder (Not a directory); give a folder in a place "
+                                         "you can write to"))
+      << below.err;
+  for (const auto *r : {&file, &below}) EXPECT_FALSE(t::contains(r->err, "filesystem error")) << r->err;
+  fs::remove_all(dir);
+}
+
+TEST(Integrity, AFolderGivenAsTheWorkflowIsNamed) {
+  const fs::path dir = t::fresh_run_directory("spreadmap_folder_workflow");
+  fs::create_directories(dir);
+  const auto r = cli({"run", dir.string(), "--out", (dir / "run").string()});
+  EXPECT_EQ(r.exit_code, 2) << r.describe();
+  EXPECT_TRUE(t::contains(r.err, "error: " + dir.string() + " is a directory; give a workflow .yaml file")) << r.err;
+  const auto v = cli({"validate", dir.string()});
+  EXPECT_EQ(v.exit_code, 2) << v.describe();
+  EXPECT_TRUE(t::contains(v.err, "error: " + dir.string() + " is a directory; give a file")) << v.err;
+  fs::remove_all(dir);
 }

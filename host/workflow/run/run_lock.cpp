@@ -44,6 +44,18 @@ void write_holder(int fd) {
     spdlog::debug("could not write the holder into the run lock: {}", std::strerror(errno));
 }
 
+// The run directory as the user named it (--out, else runs/<name>), or an error saying why not.
+void create_run_folder(const std::filesystem::path &root) {
+  std::error_code ec;
+  if (std::filesystem::exists(root, ec) && !std::filesystem::is_directory(root, ec))
+    throw InputError("error: --out " + root.string() +
+                     ": is a file, not a folder; give a new folder or an earlier run's directory");
+  std::filesystem::create_directories(root, ec);
+  if (ec)
+    throw InputError("error: --out " + root.string() + ": cannot create the folder (" + ec.message() +
+                     "); give a folder in a place you can write to");
+}
+
 bool exited_here(const Holder &h) {
   return h.pid > 0 && h.pid != ::getpid() && h.host == this_host() && ::kill(pid_t(h.pid), 0) != 0 &&
          errno == ESRCH;
@@ -52,7 +64,7 @@ bool exited_here(const Holder &h) {
 }  // namespace
 
 RunLock::RunLock(const std::filesystem::path &dir, Mode mode) {
-  std::filesystem::create_directories(dir);
+  create_run_folder(dir);
   const std::filesystem::path file = dir / ".lock";
   // close-on-exec: a child (Xvfb, sbatch) must not keep the lock past this process
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);

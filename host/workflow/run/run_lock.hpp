@@ -12,8 +12,9 @@ class RunLock {
   // exclusive: a whole run (manifest, cases, stages). shared: one case of a Slurm array
   // (`run --case N`), which leaves manifest.json alone, so such tasks may hold it together.
   enum class Mode { exclusive, shared };
-  // Creates the folder if needed and takes its lock at once, or throws RunFailure naming the
-  // directory, the holder (host and pid) and the fix.
+  // Creates the folder if needed and takes its lock at once, or throws naming the directory and
+  // the fix: InputError when it cannot be a folder (--out names a file, an unwritable place),
+  // RunFailure when another command holds the lock (with that command's host and pid).
   RunLock(const std::filesystem::path &dir, Mode mode);
   ~RunLock();
   RunLock(const RunLock &) = delete;
