@@ -45,6 +45,7 @@ commands:
   spreadmap --version
 )";
 
+namespace cli = spreadmap::cli;
 using spreadmap::cli::Common;
 using spreadmap::cli::parse;
 
@@ -103,7 +104,7 @@ int cmd_run(int argc, char **argv) {
       "its node's CPUs; Slurm: 1)")("dry-run", po::bool_switch(&cluster.dry_run),
                                     "with --executor slurm: write the scripts and print the path of "
                                     "submit.sh, submit nothing")(
-      "case", po::value(&one_case),
+      "case", cli::whole_number("case", &one_case, "a case number; cases are numbered from 0 (case 7 is c007)"),
       "run only case N of the design (case 7 is c007), leaving manifest.json alone: what one "
       "Slurm array task runs; implies --only simulate");
   c.add(d);

@@ -56,6 +56,7 @@ ModelFile load_model_json(const std::string &path) {
     m.outputs = variables(j.at("outputs"));
     m.state = j.at("state");
     m.training = j.value("training", nlohmann::json::object());
+    m.path = path;
     return m;
   } catch (const nlohmann::json::exception &e) {
     throw std::runtime_error(path + ": " + e.what());

@@ -24,6 +24,7 @@ struct ModelFile {
   std::vector<Variable> inputs, outputs;
   nlohmann::json state;                                // the plugin's save()
   nlohmann::json training = nlohmann::json::object();  // split, rows, report, source file...
+  std::string path;                                    // the file it was read from; empty when made here
 
   std::string plugin_name() const;  // "<name>" of "surrogate/<name>"
 };

@@ -26,10 +26,15 @@ void Diagnostics::error(const Location &where, const std::string &key_path, cons
   errors_.push_back(text);
 }
 
+// The first `shown` messages, then "... and N more errors": a file of thousands of mistakes is fixed
+// from its first ones, not from a flood. All are kept (errors()): callers count them to see new ones.
 void Diagnostics::throw_if_any() const {
   if (errors_.empty()) return;
+  constexpr std::size_t shown = 50;
   std::string all;
-  for (const auto &e : errors_) all += (all.empty() ? "" : "\n") + e;
+  for (std::size_t i = 0; i < errors_.size() && i < shown; ++i) all += (all.empty() ? "" : "\n") + errors_[i];
+  if (errors_.size() > shown)
+    all += "\n... and " + std::to_string(errors_.size() - shown) + " more errors (fix these and run again to see them)";
   throw InputError(all);
 }
 

@@ -1,6 +1,7 @@
 #include "core/files.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <signal.h>
 #include <unistd.h>
 
@@ -106,7 +107,23 @@ fs::path temporary_beside(const fs::path &path) {
   return path.parent_path() / ("." + path.filename().string() + tag + path.extension().string());
 }
 
+// What `path` is when it exists and is no regular file ("a symbolic link", "a FIFO", ...); "" otherwise.
+// A rename over it would replace the link, pipe or device itself (as root, --out /dev/stdout).
+std::string not_a_regular_file(const fs::path &path) {
+  struct stat st {};
+  // (a folder is left to the rename, which refuses to replace one)
+  if (::lstat(path.c_str(), &st) != 0 || S_ISREG(st.st_mode) || S_ISDIR(st.st_mode)) return "";
+  if (S_ISLNK(st.st_mode)) return "a symbolic link";
+  if (S_ISFIFO(st.st_mode)) return "a FIFO";
+  if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) return "a device";
+  return "a socket";
+}
+
 void write_atomic_with(const fs::path &path, const std::function<void(const fs::path &)> &write) {
+  if (const std::string what = not_a_regular_file(path); !what.empty())
+    throw RunFailure("error: cannot write " + path.string() + ": it is " + what +
+                     ", which spreadmap never replaces\n  give the path of a regular file, or of one that does not "
+                     "exist yet");
   if (path.has_parent_path()) {
     std::error_code ec;
     fs::create_directories(path.parent_path(), ec);
@@ -132,6 +149,9 @@ void write_atomic(const fs::path &path, std::string_view content) {
 }
 
 std::string read_text(const fs::path &path) {
+  std::error_code ec;
+  // a folder opens as a stream that reads as empty: say what it is instead
+  if (fs::is_directory(path, ec)) throw InputError("error: " + path.string() + " is a directory; give a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError("error: cannot read " + path.string() + ": no such file or not readable");
   std::ostringstream s;

@@ -1,11 +1,14 @@
 #include "core/registry.hpp"
 
+#include <dlfcn.h>
+#include <link.h>
 #include <spdlog/spdlog.h>
 
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <boost/dll/shared_library.hpp>
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <cstdlib>
 #include <set>
 
@@ -64,6 +67,32 @@ std::vector<std::string> PluginRegistry::names(const std::string &kind) const {
   return {out.begin(), out.end()};
 }
 
+namespace {
+// True when `address` lies in an executable segment of a loaded object: a function's code, not data
+// (a plugin that exports its entry point's name as a variable would make the call jump into data).
+bool in_executable_segment(const void *address) {
+  struct Query {
+    std::uintptr_t address;
+    bool executable = false;
+  } query{reinterpret_cast<std::uintptr_t>(address)};
+  ::dl_iterate_phdr(
+      [](dl_phdr_info *info, std::size_t, void *data) {
+        auto &q = *static_cast<Query *>(data);
+        for (int i = 0; i < info->dlpi_phnum; ++i) {
+          const auto &segment = info->dlpi_phdr[i];
+          const std::uintptr_t begin = info->dlpi_addr + segment.p_vaddr;
+          if (segment.p_type == PT_LOAD && q.address >= begin && q.address < begin + segment.p_memsz) {
+            q.executable = (segment.p_flags & PF_X) != 0;
+            return 1;
+          }
+        }
+        return 0;
+      },
+      &query);
+  return query.executable;
+}
+}  // namespace
+
 const LoadedPlugin &PluginRegistry::load_file(const fs::path &file, const std::string &expected_kind) {
   const std::string key = fs::absolute(file).lexically_normal().string();
   if (auto it = loaded_.find(key); it != loaded_.end()) return it->second;
@@ -79,6 +108,10 @@ const LoadedPlugin &PluginRegistry::load_file(const fs::path &file, const std::s
                       " is not a spreadmap plugin: it has no entry point 'spreadmap_plugin_v1'\n"
                       "  plugins end with SPREADMAP_PLUGIN(...) or SPREADMAP_CONTACT_PLUGIN(...) and build with "
                       "spreadmap_add_plugin()");
+  if (!in_executable_segment(::dlsym(lib->native(), "spreadmap_plugin_v1")))
+    throw PluginError("error: " + file.string() +
+                      " exports 'spreadmap_plugin_v1' as data, not as a function: calling it would crash; the "
+                      "entry point is the function SPREADMAP_PLUGIN(...) defines: rebuild it with this SDK");
   const auto entry = lib->get<const sm_plugin_v1 *()>("spreadmap_plugin_v1");
   const sm_plugin_v1 *d = entry();
   if (!d) throw PluginError("error: " + file.string() + ": its entry point returned no descriptor");

@@ -3,8 +3,12 @@
 #include <spdlog/spdlog.h>
 
 #include <boost/program_options.hpp>
+#include <cctype>
 #include <iostream>
+#include <limits>
 #include <string>
+
+#include "core/error.hpp"
 
 namespace spreadmap::cli {
 
@@ -20,6 +24,24 @@ struct Common {
     spdlog::set_level(quiet ? spdlog::level::warn : verbose ? spdlog::level::debug : spdlog::level::info);
   }
 };
+
+// An unsigned option read as what it is: boost reads "-1" into an unsigned as 2^64 - 1 and goes on.
+// `what` ends "error: --<option> <text>: not <what>".
+template <class T>
+po::typed_value<std::string> *whole_number(const std::string &option, T *target, const std::string &what) {
+  return po::value<std::string>()->notifier([=](const std::string &text) {
+    std::size_t used = 0;
+    unsigned long long v = 0;
+    if (!text.empty() && std::isdigit(static_cast<unsigned char>(text[0]))) try {
+        v = std::stoull(text, &used);
+      } catch (const std::out_of_range &) {
+        used = 0;
+      }
+    if (used == 0 || used != text.size() || v > std::numeric_limits<T>::max())
+      throw InputError("error: --" + option + " " + text + ": not " + what);
+    *target = T(v);
+  });
+}
 
 // Parses argv[1..] (argv[0] is the command's name); returns false when --help was printed.
 inline bool parse(int argc, char **argv, po::options_description &desc, po::positional_options_description &pos,

@@ -8,6 +8,7 @@
 #include "workflow/executors/executor_hook.hpp"
 #include "workflow/executors/local_executor.hpp"
 #include "workflow/report/run_report.hpp"
+#include "workflow/run/run_lock.hpp"
 #include "workflow/scene/scene_section.hpp"
 #include "workflow/stage.hpp"
 
@@ -68,7 +69,11 @@ int run_workflow(const fs::path &file, const RunOptions &given, PluginRegistry &
         return join(k);
       }() + ")");
   }
-  RunDirectory run(options.out.empty() ? fs::path("runs") / v.wf.name : options.out);
+  const fs::path root = options.out.empty() ? fs::path("runs") / v.wf.name : options.out;
+  // One writer per run directory, held to the end; one case of a Slurm array leaves the manifest
+  // alone, so its sibling tasks may hold the lock beside it.
+  const RunLock lock(root, options.records_manifest() ? RunLock::Mode::exclusive : RunLock::Mode::shared);
+  RunDirectory run(root);
   if (options.records_manifest())
     run.update_manifest([&](nlohmann::json &m) {
       m["workflow"] = {{"file", fs::absolute(file).string()}, {"name", v.wf.name}};

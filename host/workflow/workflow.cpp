@@ -23,6 +23,8 @@ Workflow load_workflow(const fs::path &file) {
   Workflow wf;
   wf.file = file;
   wf.dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  if (std::error_code ec; fs::is_directory(file, ec))
+    throw InputError("error: " + file.string() + " is a directory; give a workflow .yaml file");
   wf.root = load_yaml(file);
   const std::string f = file.string();
   Diagnostics diag;

@@ -24,6 +24,7 @@ spreadmap_fixture_plugin(shadow fixture_law DEFINES FIXTURE_VERSION="2.0.0")
 spreadmap_fixture_plugin(abi_mismatch abi_mismatch DEFINES FIXTURE_ABI=99u)
 spreadmap_fixture_plugin(stale_hooke_slider hooke_slider DEFINES FIXTURE_ABI=99u)  # shadows the real one
 spreadmap_fixture_plugin(no_entry no_entry DEFINES FIXTURE_NO_ENTRY)
+spreadmap_fixture_plugin(entry_variable entry_variable DEFINES FIXTURE_ENTRY_VARIABLE)
 spreadmap_fixture_plugin(null_descriptor null_descriptor DEFINES FIXTURE_NULL_DESCRIPTOR)
 spreadmap_fixture_plugin(kind_mismatch kind_mismatch DEFINES FIXTURE_KIND="spreader")
 spreadmap_fixture_plugin(name_mismatch name_mismatch REGISTERS other_name)

@@ -46,6 +46,23 @@ TEST(CoreDiagnostics, MessageShape) {
   }
 }
 
+TEST(CoreDiagnostics, ThousandsOfErrorsShowTheFirstFiftyAndTheCount) {
+  sm::Diagnostics diag;
+  for (int i = 0; i < 10000; ++i) diag.error({"wf.yaml", i + 1, 1}, "key" + std::to_string(i), "unknown key");
+  EXPECT_EQ(diag.errors().size(), 10000u) << "every error is kept: callers count them to see new ones";
+  try {
+    diag.throw_if_any();
+    FAIL() << "no error";
+  } catch (const sm::InputError &e) {
+    const std::string text = e.what();
+    EXPECT_NE(text.find("error: wf.yaml:50:1: key49: unknown key\n"), std::string::npos);
+    EXPECT_EQ(text.find("key50:"), std::string::npos) << "the 51st is not shown";
+    const std::string tail = "\n... and 9950 more errors (fix these and run again to see them)";
+    ASSERT_GE(text.size(), tail.size());
+    EXPECT_EQ(text.substr(text.size() - tail.size()), tail);
+  }
+}
+
 TEST(CoreDiagnostics, ExitCodesAreDistinct) {
   EXPECT_EQ(sm::InputError("x").exit_code, 2);
   EXPECT_EQ(sm::PluginError("x").exit_code, 3);

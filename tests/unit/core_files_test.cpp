@@ -4,6 +4,7 @@
 // fixed values: run directories written by an older build must still recognise their finished cases.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -87,6 +88,33 @@ TEST_F(CoreFiles, FailedRenameLeavesNoTemporary) {
     EXPECT_NE(what.find("move it away"), std::string::npos) << what;
   }
   EXPECT_EQ(listing(), (std::vector<std::string>{"occupied", "occupied/child"}));
+}
+
+// An output path that is a symbolic link, a FIFO or a device is refused, never replaced by a regular
+// file (as root, --out /dev/stdout would otherwise replace the device): each stays what it was.
+TEST_F(CoreFiles, ALinkAFifoOrADeviceIsRefusedNotReplaced) {
+  sm::write_atomic(dir / "target.csv", "the link's target\n");
+  fs::create_symlink(dir / "target.csv", dir / "link.csv");
+  ASSERT_EQ(::mkfifo((dir / "pipe.csv").c_str(), 0644), 0);
+  for (const auto &[path, what] : std::vector<std::pair<fs::path, std::string>>{
+           {dir / "link.csv", "a symbolic link"}, {dir / "pipe.csv", "a FIFO"}, {"/dev/null", "a device"}}) {
+    try {
+      sm::write_atomic(path, "text");
+      FAIL() << path << " was written";
+    } catch (const sm::RunFailure &e) {
+      EXPECT_NE(std::string(e.what()).find("cannot write " + path.string() + ": it is " + what), std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("never replaces"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_TRUE(fs::is_symlink(dir / "link.csv"));
+  EXPECT_EQ(fs::status(dir / "pipe.csv").type(), fs::file_type::fifo);
+  EXPECT_EQ(fs::status("/dev/null").type(), fs::file_type::character);
+  EXPECT_EQ(sm::read_text(dir / "target.csv"), "the link's target\n");
+  std::vector<std::string> names;  // (listing() would resolve the link to its target's name)
+  for (const auto &e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"link.csv", "pipe.csv", "target.csv"})) << "no temporary is left";
 }
 
 // The write stops half way, as on a full disk: the file size limit (which binds root too) makes

@@ -2,6 +2,7 @@
 //   FIXTURE_KIND, FIXTURE_NAME   what the descriptor claims (default: contact / the file's name)
 //   FIXTURE_ABI                  the ABI number it reports (default: the SDK's)
 //   FIXTURE_NO_ENTRY             exports a differently named function instead of the entry point
+//   FIXTURE_ENTRY_VARIABLE       exports the entry point's name as a variable, not a function
 //   FIXTURE_NULL_DESCRIPTOR      the entry point returns NULL
 //   FIXTURE_FACTORY              0: create() works; 1: it refuses through sm_error; 2: it throws
 //   FIXTURE_VERSION              the plugin's version text (tells two copies apart)
@@ -69,6 +70,10 @@ void destroy(void *self) { delete static_cast<int *>(self); }
 
 #ifdef FIXTURE_NO_ENTRY
 extern "C" SM_EXPORT const sm_plugin_v1 *some_other_function(void) { return &descriptor; }
+#elif defined(FIXTURE_ENTRY_VARIABLE)
+extern "C" {
+SM_EXPORT const sm_plugin_v1 *spreadmap_plugin_v1 = &descriptor;  // data: calling it would crash
+}
 #elif defined(FIXTURE_NULL_DESCRIPTOR)
 extern "C" SM_EXPORT const sm_plugin_v1 *spreadmap_plugin_v1(void) { return nullptr; }
 #else

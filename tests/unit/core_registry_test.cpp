@@ -105,6 +105,12 @@ TEST(CoreRegistry, LibraryWithoutTheEntryPoint) {
   EXPECT_TRUE(contains(e, "is not a spreadmap plugin: it has no entry point 'spreadmap_plugin_v1'")) << e;
 }
 
+TEST(CoreRegistry, EntryPointExportedAsAVariableIsRefusedNotCalled) {
+  const std::string e = get_error({fixtures / "entry_variable"}, "contact", "entry_variable");
+  EXPECT_TRUE(contains(e, library("entry_variable", "entry_variable").string())) << e;
+  EXPECT_TRUE(contains(e, "exports 'spreadmap_plugin_v1' as data, not as a function")) << e;
+}
+
 TEST(CoreRegistry, EntryPointReturningNothing) {
   const std::string e = get_error({fixtures / "null_descriptor"}, "contact", "null_descriptor");
   EXPECT_TRUE(contains(e, library("null_descriptor", "null_descriptor").string())) << e;

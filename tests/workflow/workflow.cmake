@@ -65,3 +65,6 @@ target_link_libraries(test_workflow_rough_substrate PRIVATE spreadmap_workflow)
 # The user guide (README.md, docs/*.md) kept true: its complete YAML files validate, its command lines
 # name real commands and options, its links reach their pages and headings.
 spreadmap_workflow_test(guide_examples SOURCES ${CMAKE_CURRENT_LIST_DIR}/guide_examples_test.cpp TIMEOUT 300)
+# Issue 37, nothing lost, nothing stale, nothing crashes: the run directory lock, models predicting
+# NaN, messages of bad options, a full disk.
+spreadmap_workflow_test(integrity SOURCES ${CMAKE_CURRENT_LIST_DIR}/integrity_test.cpp TIMEOUT 300)

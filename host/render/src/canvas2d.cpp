@@ -90,13 +90,25 @@ double nice_step(double lo, double hi, int count) {
   return nice * mag;
 }
 
+std::vector<double> step_multiples(double k0, double k1, double step, std::size_t max) {
+  std::vector<double> out;
+  if (!std::isfinite(k0) || !std::isfinite(k1) || !std::isfinite(step) || !(step > 0)) return out;
+  for (double k = k0; k <= k1 && out.size() < max; ++k) {
+    out.push_back(k * step);
+    if (k + 1 == k) break;  // past 2^53 a double holds no next whole number
+  }
+  return out;
+}
+
 std::vector<double> nice_ticks(double lo, double hi, int count) {
   if (lo > hi) std::swap(lo, hi);
   const double step = nice_step(lo, hi, count);
-  std::vector<double> t;
   const double eps = 1e-9 * step;
-  for (double v = std::ceil((lo - eps) / step) * step; v <= hi + eps; v += step)
-    t.push_back(std::abs(v) < eps ? 0.0 : v);
+  constexpr std::size_t most = 1000;  // far more than an axis can label, however large count is
+  auto t = step_multiples(std::ceil((lo - eps) / step), std::floor((hi + eps) / step), step,
+                          std::min(2 * std::size_t(std::max(count, 1)) + 2, most));
+  for (double &v : t)
+    if (std::abs(v) < eps) v = 0.0;
   return t;
 }
 
@@ -132,6 +144,7 @@ void Canvas::polyline(const std::vector<Point2>& pts, const Rgb& colour, double 
     for (std::size_t i = 0; i + 1 < path.size(); ++i) {
       const Point2 a = path[i], b = path[i + 1];
       const double len = std::hypot(b[0] - a[0], b[1] - a[1]);
+      if (!(len < 1e6)) continue;  // a NaN, infinite or absurd point: millions of dashes off any figure
       double d = 0;
       while (d < len) {
         const bool on = phase < dash;

@@ -29,9 +29,13 @@ struct LegendEntry {
   Rgb fill_box{-1, -1, -1};  // a filled swatch (bands) when fill_box[0] >= 0
 };
 
-// Round tick values (1, 2, 5 x 10^k steps) inside [lo, hi], about `count` of them.
+// Round tick values (1, 2, 5 x 10^k steps) inside [lo, hi], about `count` of them: never more than
+// 2 count + 2, and none when a bound is not finite (a NaN, an infinity or a span that overflows).
 std::vector<double> nice_ticks(double lo, double hi, int count);
 double nice_step(double lo, double hi, int count);
+// k step for the whole numbers k from k0 to k1, at most `max` of them; none unless all are finite.
+// Counting k, not adding step, ends where step is below the spacing of doubles near the values.
+std::vector<double> step_multiples(double k0, double k1, double step, std::size_t max);
 std::string format_value(double v, double step);  // as many decimals as the step needs
 
 class Canvas {

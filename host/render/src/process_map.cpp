@@ -67,9 +67,9 @@ std::vector<double> auto_levels(const std::vector<double>& field, double scale, 
     if (std::isfinite(v)) lo = std::min(lo, v * scale), hi = std::max(hi, v * scale);
   if (!(hi > lo)) return {};
   const double step = detail::nice_step(lo, hi, count);
-  std::vector<double> levels;
-  for (double v = std::floor(lo / step) * step; v < hi + step * 0.999; v += step) levels.push_back(v);
-  return levels;
+  // from the multiple at or below lo to the first at or above hi
+  return detail::step_multiples(std::floor(lo / step), std::ceil(hi / step + 0.999) - 1, step,
+                                2 * std::size_t(count) + 4);
 }
 
 std::vector<double> scaled(const std::vector<double>& v, double scale) {

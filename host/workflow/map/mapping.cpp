@@ -13,11 +13,48 @@
 
 namespace spreadmap {
 
-std::unique_ptr<analysis::PluginModel> load_model(PluginRegistry &registry, const analysis::ModelFile &file) {
+namespace {
+
+// A loaded model that refuses to hand out numbers nobody can trust: a map, an optimum or a query
+// built on NaN or infinite predictions would look like an answer.
+class CheckedModel : public analysis::Model {
+ public:
+  CheckedModel(std::unique_ptr<analysis::PluginModel> model, const analysis::ModelFile &file)
+      : model_(std::move(model)), source_(file.path.empty() ? file.plugin : file.path) {
+    for (const auto &o : file.outputs) outputs_.push_back(o.name);
+  }
+  void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y) override { model_->fit(x, y); }
+  analysis::Prediction predict(const Eigen::MatrixXd &x) const override {
+    analysis::Prediction p = model_->predict(x);
+    check(p.mean, "prediction");
+    check(p.std, "predictive std");
+    return p;
+  }
+  bool has_std() const override { return model_->has_std(); }
+  nlohmann::json state() const override { return model_->state(); }
+  void load(const nlohmann::json &state) override { model_->load(state); }
+  nlohmann::json fit_info() const override { return model_->fit_info(); }
+
+ private:
+  void check(const Eigen::MatrixXd &values, const char *what) const {
+    for (Eigen::Index c = 0; c < values.cols(); ++c)
+      if (!values.col(c).allFinite())
+        throw InputError("error: " + source_ + ": the model's " + what + " of " + outputs_.at(std::size_t(c)) +
+                         " is not a finite number (its saved state is damaged or out of range); train it "
+                         "again (spreadmap train, or spreadmap run --only train --force)");
+  }
+  std::unique_ptr<analysis::PluginModel> model_;
+  std::string source_;
+  std::vector<std::string> outputs_;
+};
+
+}  // namespace
+
+std::unique_ptr<analysis::Model> load_model(PluginRegistry &registry, const analysis::ModelFile &file) {
   const LoadedPlugin &plugin = registry.get("surrogate", file.plugin_name());
   auto model = analysis::PluginModel::create(plugin.descriptor, file.params.dump());
   model->load(file.state, Eigen::Index(file.outputs.size()));
-  return model;
+  return std::make_unique<CheckedModel>(std::move(model), file);
 }
 
 std::optional<std::size_t> output_index(const analysis::ModelFile &file, const std::string &name) {

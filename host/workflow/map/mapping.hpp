@@ -18,7 +18,9 @@
 
 namespace spreadmap {
 
-std::unique_ptr<analysis::PluginModel> load_model(PluginRegistry &registry, const analysis::ModelFile &file);
+// The model of a model.json, ready to predict. Its predictions are checked: a NaN or infinite one (a
+// damaged state, e.g. a GP length scale of 1e308) throws InputError naming the file, never a number.
+std::unique_ptr<analysis::Model> load_model(PluginRegistry &registry, const analysis::ModelFile &file);
 
 // The optimum's default confidence: P(R_q <= target) of the chosen setting at least 0.9.
 constexpr double default_confidence = 0.9;

@@ -9,6 +9,23 @@
 
 namespace spreadmap {
 
+namespace {
+// What is wrong with a manifest's shape, "" when nothing: the stages read it without asking again.
+std::string shape_problem(const nlohmann::json &m) {
+  if (!m.is_object()) return "it is not a JSON object";
+  for (const char *list : {"cases", "verify_cases"}) {
+    if (!m.contains(list)) continue;
+    if (!m[list].is_array()) return std::string(list) + " is not a list";
+    for (const auto &c : m[list])
+      if (!c.is_object() || !c.contains("id") || !c["id"].is_string())
+        return std::string("an entry of ") + list + " is not an object with a text id";
+  }
+  for (const char *object : {"stages", "design", "workflow", "plugins"})
+    if (m.contains(object) && !m[object].is_object()) return std::string(object) + " is not an object";
+  return "";
+}
+}  // namespace
+
 RunDirectory::RunDirectory(fs::path root) : root_(std::move(root)) {
   fs::create_directories(root_);
   const fs::path m = root_ / "manifest.json";
@@ -18,6 +35,9 @@ RunDirectory::RunDirectory(fs::path root) : root_(std::move(root)) {
     } catch (const nlohmann::json::exception &e) {
       throw RunFailure("error: " + m.string() + " is damaged (" + e.what() + "): remove it, or use --force");
     }
+    if (const std::string problem = shape_problem(manifest_); !problem.empty())
+      throw RunFailure("error: " + m.string() + ": not a spreadmap run manifest (" + problem +
+                       "): move it away to start this run directory afresh, or give the run another --out");
   } else {
     manifest_ = {{"format", "spreadmap-run"}, {"version", 1}};
   }

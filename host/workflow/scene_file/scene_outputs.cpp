@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
-#include <fstream>
+#include <iterator>
 
 #include "core/files.hpp"
 
@@ -18,27 +18,25 @@ double wrap(double d, double length, bool periodic) {
   return d;
 }
 
+// Both tables are built in memory and written by write_atomic, as the .vtp beside them: every byte
+// is checked on its way to the disk, so a full disk fails the command and leaves no short file under
+// the final name (a stream checked before its last flush could).
 void write_particles_csv(const fs::path &path, const engine::ParticleSet &s) {
-  write_atomic_with(path, [&](const fs::path &tmp) {
-    std::ofstream out(tmp);
-    out << "id,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass,fixed\n";
-    for (std::size_t i = 0; i < s.size(); ++i)
-      out << fmt::format(
-          "{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n", s.id[i],
-          s.x[i], s.y[i], s.z[i], s.vx[i], s.vy[i], s.vz[i], s.wx[i], s.wy[i], s.wz[i], s.radius[i], s.mass[i],
-          s.fixed.empty() ? 0 : int(s.fixed[i]));
-    if (!out) throw std::runtime_error("write failed");
-  });
+  std::string out = "id,x,y,z,vx,vy,vz,wx,wy,wz,radius,mass,fixed\n";
+  for (std::size_t i = 0; i < s.size(); ++i)
+    fmt::format_to(std::back_inserter(out),
+                   "{},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{:.17g},{}\n",
+                   s.id[i], s.x[i], s.y[i], s.z[i], s.vx[i], s.vy[i], s.vz[i], s.wx[i], s.wy[i], s.wz[i], s.radius[i],
+                   s.mass[i], s.fixed.empty() ? 0 : int(s.fixed[i]));
+  write_atomic(path, out);
 }
 
 void write_contacts_csv(const fs::path &path, const std::vector<PairForce> &contacts) {
-  write_atomic_with(path, [&](const fs::path &tmp) {
-    std::ofstream out(tmp);
-    out << "id_i,id_j,fx,fy,fz,overlap\n";
-    for (const auto &c : contacts)
-      out << fmt::format("{},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", c.id_i, c.id_j, c.f[0], c.f[1], c.f[2], c.overlap);
-    if (!out) throw std::runtime_error("write failed");
-  });
+  std::string out = "id_i,id_j,fx,fy,fz,overlap\n";
+  for (const auto &c : contacts)
+    fmt::format_to(std::back_inserter(out), "{},{},{:.17g},{:.17g},{:.17g},{:.17g}\n", c.id_i, c.id_j, c.f[0],
+                   c.f[1], c.f[2], c.overlap);
+  write_atomic(path, out);
 }
 
 }  // namespace

@@ -44,8 +44,10 @@ int cmd_train(int argc, char **argv) {
       "auto (by size: holdout from 40 rows, kfold:5 from 12, loo below) | holdout (the study's 35/10) | kfold:K | "
       "loo | column:NAME")("split-column", po::value(&split_column),
                            "a column of train/test labels (= --split column:NAME)")(
-      "folds", po::value(&folds)->default_value(5), "K of a plain --split kfold")(
-      "seed", po::value(&rq.seed)->default_value(1), "seed of the split")(
+      "folds", cli::whole_number("folds", &folds, "a number of folds (2 or more)")->default_value("5"),
+      "K of a plain --split kfold")(
+      "seed", cli::whole_number("seed", &rq.seed, "a seed (a whole number, 0 or more)")->default_value("1"),
+      "seed of the split")(
       "param", po::value(&params)->multitoken(), "surrogate parameter KEY=VALUE (see spreadmap plugins MODEL)")(
       "no-figures", "do not render parity.png")("format", po::value(&format)->default_value("table"), "table | json");
   c.add(d);
