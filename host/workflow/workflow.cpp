@@ -1,5 +1,7 @@
 #include "workflow/workflow.hpp"
 
+#include <yaml-cpp/depthguard.h>
+
 #include <algorithm>
 
 #include "core/error.hpp"
@@ -12,6 +14,11 @@ YAML::Node load_yaml(const fs::path &file) {
   const std::string text = read_text(file);
   try {
     return YAML::Load(text);
+  } catch (const YAML::DeepRecursion &e) {  // yaml-cpp calls it "bad file"
+    Location at{file.string(), e.mark.line + 1, e.mark.column + 1};
+    throw InputError("error: " + at.str() + ": YAML nested more than " + std::to_string(e.depth()) +
+                     " levels deep here\n  no spreadmap file nests more than a few levels: close the brackets or "
+                     "braces opened before this point");
   } catch (const YAML::Exception &e) {
     Location at{file.string(), e.mark.line + 1, e.mark.column + 1};
     throw InputError("error: " + at.str() + ": YAML syntax: " + e.msg +

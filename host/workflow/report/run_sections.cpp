@@ -103,6 +103,8 @@ PageSection provenance_section(const fs::path &run, const json &manifest) {
   for (const auto &[stage, t] : member(manifest, "stages").items())
     table.add({html::escape("stage " + stage),
                html::escape(number(field(t, "wall_seconds"), "{:.1f} s") + " (its last run), ended " + t.value("end", ""))});
+  for (const auto &[plugin, version] : member(manifest, "plugins").items())
+    table.add({html::escape(plugin), html::escape(version.is_string() ? version.get<std::string>() : version.dump())});
   for (const auto &model_dir : {run / "train"})
     if (fs::is_directory(model_dir))
       for (const auto &m : fs::directory_iterator(model_dir)) {
