@@ -146,3 +146,31 @@ TEST(ReadBack, TemporariesOfAKilledWriteAreRemovedByTheNextRun) {
   EXPECT_TRUE(contains(again.err, "removed 1 temporary files of writes a killed run left unfinished")) << again.err;
   fs::remove_all(dir);
 }
+
+// Killed after a case's files and before the manifest recorded its outcome (its snapshot was being
+// drawn, say): the next run finds the case finished and takes its timing from the case's timing.json.
+TEST(ReadBack, ACaseTheManifestNeverHeardOfKeepsItsTiming) {
+  const fs::path dir = t::fresh_run_directory("spreadmap_read_back_timing");
+  const fs::path run = dir / "run";
+  const t::Command command{{"run", workflow(dir, "[{U: 100 mm/s}, {U: 90 mm/s}]").string(), "--out", run.string()},
+                           {}, {}, {}};
+  ASSERT_EQ(t::run(command).exit_code, 0);
+  const auto timing = t::json_file(run / "cases" / "c000" / "timing.json");
+  auto manifest = t::json_file(run / "manifest.json");
+  for (auto &c : manifest["cases"])
+    if (c["id"] == "c000")
+      for (const char *k : {"start", "end", "wall_seconds", "status", "rank", "host"}) c.erase(k);
+  std::ofstream(run / "manifest.json", std::ios::trunc) << manifest.dump(2);
+  const t::Outcome again = t::run(command);
+  ASSERT_EQ(again.exit_code, 0) << again.describe();
+  EXPECT_TRUE(contains(again.err, "2 cases, 0 to run, 2 finished already")) << again.err;
+  const auto after = t::json_file(run / "manifest.json");  // (named: a range-for over a temporary's member dangles)
+  for (const auto &c : after["cases"])
+    if (c["id"] == "c000") {
+      EXPECT_EQ(c.value("status", ""), "done");
+      EXPECT_EQ(c.value("start", ""), timing["start"].get<std::string>());
+      EXPECT_EQ(c.value("end", ""), timing["end"].get<std::string>());
+      EXPECT_EQ(c.value("wall_seconds", -1.0), timing["wall_seconds"].get<double>());
+    }
+  fs::remove_all(dir);
+}

@@ -134,6 +134,13 @@ CaseOutcome run_case_job(const CaseJob &job, PluginRegistry &registry) {
   }
   o.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   o.end = RunDirectory::now_iso();
+  // The timing beside the case, before the figure: a kill between the two leaves it for the manifest
+  // (simulate_stage.cpp takes it from here when the manifest never heard of the outcome).
+  if (o.ok)
+    write_atomic(job.request.dir / "timing.json",
+                 nlohmann::json({{"start", o.start}, {"end", o.end}, {"wall_seconds", o.wall_seconds}, {"host", o.host}})
+                         .dump(2) +
+                     "\n");
   if (o.ok && job.render) draw_snapshot(job.request, o.result);
   return o;
 }

@@ -20,6 +20,18 @@
 namespace spreadmap {
 namespace {
 
+// A finished case whose outcome the manifest never recorded (the run was killed between the case's
+// files and its record): its timing from the case's own timing.json, when that was written.
+void recover_timing(nlohmann::json &c, const fs::path &dir) {
+  try {
+    const auto t = nlohmann::json::parse(read_text(dir / "timing.json"));
+    for (const char *k : {"start", "end", "wall_seconds", "host"})
+      if (t.contains(k)) c[k] = t[k];
+  } catch (const std::exception &) {
+    // no timing.json (a case of an older version): the manifest says only that it is done
+  }
+}
+
 class SimulateStage : public Stage {
  public:
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
@@ -96,8 +108,10 @@ class SimulateStage : public Stage {
         // on an MPI rank killed before rank 0 heard of it. case.json is the proof.
         for (auto &c : cases)
           if (!c.contains("status") &&
-              case_finished(ctx.run.case_dir(c["id"].get<std::string>()), c["hash"].get<std::string>()))
+              case_finished(ctx.run.case_dir(c["id"].get<std::string>()), c["hash"].get<std::string>())) {
             c["status"] = "done";
+            recover_timing(c, ctx.run.case_dir(c["id"].get<std::string>()));
+          }
         m["cases"] = cases;
         m["design"] = {{"type", design_.type}, {"variables", [&] {
                                                   auto v = nlohmann::json::array();
