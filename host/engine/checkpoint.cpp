@@ -70,13 +70,14 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   if (!in) throw SetupError(fmt::format("{}: cannot open the checkpoint for reading", path.string()));
   std::ostringstream all;
   all << in.rdbuf();
+  std::string bytes = all.str();
   {  // magic and version first, unsealed: a foreign or older file is named so, not called damaged
-    BinaryReader head(all.str(), path.string());
+    BinaryReader head(bytes.substr(0, sizeof magic + sizeof format_version), path.string());
     for (char c : magic)
       if (head.value<char>() != c) head.fail("wrong magic bytes");
     if (head.value<std::uint32_t>() != format_version) head.fail("unknown format version");
   }
-  BinaryReader r = BinaryReader::sealed(all.str(), path.string());
+  BinaryReader r = BinaryReader::sealed(std::move(bytes), path.string());
   for (char c : magic)
     if (r.value<char>() != c) r.fail("wrong magic bytes");
   if (r.value<std::uint32_t>() != format_version) r.fail("unknown format version");

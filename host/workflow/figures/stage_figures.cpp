@@ -31,12 +31,16 @@ std::string case_title(const std::string &id, const nlohmann::json &inputs) {
 }
 
 bool whole_png(const fs::path &png) {
-  std::ifstream in(png, std::ios::binary);
-  std::string bytes((std::istreambuf_iterator<char>(in)), {});
   // the 8-byte signature first, the IEND chunk (its type and fixed CRC) last: a torn write lacks it
   static const std::string signature = "\x89PNG\r\n\x1a\n", end = std::string("IEND\xae\x42\x60\x82", 8);
-  return bytes.size() > signature.size() + end.size() && bytes.compare(0, signature.size(), signature) == 0 &&
-         bytes.compare(bytes.size() - end.size(), end.size(), end) == 0;
+  std::ifstream in(png, std::ios::binary | std::ios::ate);
+  if (!in || in.tellg() < std::streamoff(signature.size() + end.size())) return false;
+  std::string head(signature.size(), '\0'), tail(end.size(), '\0');
+  in.seekg(std::streamoff(-end.size()), std::ios::end);
+  in.read(tail.data(), std::streamsize(tail.size()));
+  in.seekg(0);
+  in.read(head.data(), std::streamsize(head.size()));
+  return in && head == signature && tail == end;
 }
 
 #ifndef SPREADMAP_WITH_RENDER
@@ -65,7 +69,7 @@ void surfaces(const analysis::GridMap &, const std::vector<std::string> &, const
 }
 void process_map(const analysis::GridMap &, std::size_t, std::size_t, const analysis::Table &,
                  const std::vector<analysis::Optimum> &, const fs::path &, const analysis::Table &, int,
-                 const std::vector<std::string> &) {
+                 const std::vector<analysis::MapTrust> &) {
   unavailable();
 }
 void tradeoff(const std::vector<TradeoffRow> &, double, double, const fs::path &) { unavailable(); }
@@ -251,7 +255,7 @@ void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &uni
 
 void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
                  const std::vector<analysis::Optimum> &optima, const fs::path &png, const analysis::Table &cases,
-                 int verified, const std::vector<std::string> &untrusted) {
+                 int verified, const std::vector<analysis::MapTrust> &trust) {
   const PlaneGrid p = plane(grid);
   if (!p.ok) return;
   guarded(png, [&] {
@@ -278,10 +282,10 @@ void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, 
       const auto u = cases.numbers(grid.inputs[0]), w = cases.numbers(grid.inputs[1]);
       for (std::size_t i = 0; i < u.size(); ++i) in.cases.push_back({u[i], w[i]});
     }
-    for (const auto &line : untrusted) {
-      in.notes.push_back(line);
-      in.rq_greyed |= line.rfind("R_q", 0) == 0;
-      in.vs_greyed |= line.rfind("V_s", 0) == 0;
+    in.notes = map_notes(trust);
+    for (const auto &t : trust) {
+      in.rq_greyed |= t.untrusted() && t.output == "rq";
+      in.vs_greyed |= t.untrusted() && t.output == "vs";
     }
     render::process_map(in, png, sized(1600, 1100, "Process map: R_q (filled) and V_s (lines)"));
   });

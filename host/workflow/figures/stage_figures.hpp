@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "analysis/grid.hpp"
+#include "analysis/map_trust.hpp"
 #include "analysis/optimum.hpp"
 #include "analysis/report.hpp"
 #include "engine/particle_set.hpp"
@@ -47,12 +48,12 @@ void surfaces(const analysis::GridMap &grid, const std::vector<std::string> &uni
 // The process map: V_s and R_q contours over (U, omega), the frontier, the simulated cases (the
 // grid's input columns of `cases`, when it has them) and the first optimum with its probability of
 // meeting the target, marked as proposed (verified < 0), verified by simulation (1) or simulated
-// outside its interval (0). `untrusted`: lines saying which maps cannot be trusted ("R_q map NOT
-// TRUSTED: ..."); such a field is drawn greyed and the lines are printed on the figure.
+// outside its interval (0). `trust`: the maps' verdicts; an untrusted field is drawn greyed and said
+// so on the figure.
 void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, const analysis::Table &frontier,
                  const std::vector<analysis::Optimum> &optima, const fs::path &png,
                  const analysis::Table &cases = analysis::Table(), int verified = -1,
-                 const std::vector<std::string> &untrusted = {});
+                 const std::vector<analysis::MapTrust> &trust = {});
 
 // The speed-accuracy trade: |error| of each fidelity against the reference over its wall time.
 struct TradeoffRow {

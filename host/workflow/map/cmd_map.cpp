@@ -47,7 +47,7 @@ void print_optimum(const analysis::Optimum &o, const analysis::ModelFile &file, 
   }
   std::cout << fmt::format("R_q <= {} (confidence {:.2f}): {}\n", display(o.rq_max, "m"), o.confidence,
                            describe_optimum(o, file));
-  for (const auto &line : map_notes(map)) std::cout << "  " << line << "\n";
+  for (const auto &line : map_notes(map.trust)) std::cout << "  " << line << "\n";
 }
 
 }  // namespace

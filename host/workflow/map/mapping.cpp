@@ -158,12 +158,12 @@ void write_process_map(const MapResult &m, const analysis::ModelFile &file, cons
   figures::surfaces(m.grid, out_units, training ? *training : analysis::Table(), dir);
   if (m.vs && m.rq)
     figures::process_map(m.grid, *m.vs, *m.rq, m.frontier, m.optima, dir / "map.png",
-                         training ? *training : analysis::Table(), -1, map_notes(m));
+                         training ? *training : analysis::Table(), -1, m.trust);
 }
 
-std::vector<std::string> map_notes(const MapResult &m) {
+std::vector<std::string> map_notes(const std::vector<analysis::MapTrust> &trust) {
   std::vector<std::string> notes;
-  for (const auto &t : m.trust)
+  for (const auto &t : trust)
     if (t.untrusted() && (t.output == "vs" || t.output == "rq"))
       notes.push_back(fmt::format("{} map NOT TRUSTED: cross-validated Q^2 = {:.2f} < {:.2f}",
                                   t.output == "rq" ? "R_q" : "V_s", t.q2_cv, analysis::min_trusted_q2_cv));

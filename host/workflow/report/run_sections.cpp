@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <fstream>
 #include <thread>
 
@@ -69,19 +70,21 @@ PageSection cases_section(const fs::path &run, const json &manifest) {
   for (const auto &m : shown_metrics) header.push_back(metric_label(m));
   header.push_back("snapshot");
   html::HtmlTable table(header);
+  const std::vector<std::string> metric_ids = metrics ? metrics->texts("case") : std::vector<std::string>();
+  std::vector<std::vector<double>> metric_columns;
+  for (const auto &m : shown_metrics) metric_columns.push_back(metrics->numbers(m));
   for (const auto &c : cases) {
     const std::string id = c.value("id", "");
     std::vector<std::string> row = {html::escape(id)};
     for (const auto &k : inputs) row.push_back(html::escape(shown(member(c, "inputs").value(k, json()), unit_of(k))));
     row.push_back(html::escape(c.value("status", "pending")));
     row.push_back(c.contains("wall_seconds") ? number(field(c, "wall_seconds"), "{:.0f} s") : "");
-    for (const auto &m : shown_metrics) {
-      std::string cell;
-      const auto ids = metrics->texts("case");
-      for (std::size_t r = 0; r < ids.size(); ++r)
-        if (ids[r] == id) cell = html::escape(display(metrics->numbers(m)[r], unit_of(m)));
-      row.push_back(cell);
-    }
+    const auto at = std::find(metric_ids.begin(), metric_ids.end(), id);
+    for (std::size_t k = 0; k < shown_metrics.size(); ++k)
+      row.push_back(at == metric_ids.end()
+                        ? ""
+                        : html::escape(display(metric_columns[k][std::size_t(at - metric_ids.begin())],
+                                               unit_of(shown_metrics[k]))));
     row.push_back(html::inline_png(run / "cases" / id / "snapshot.png", "snapshot of " + id, "thumb"));
     table.add(std::move(row));
   }

@@ -25,7 +25,7 @@ void redraw_verified_map(StageContext &ctx, const analysis::ModelFile &model, co
   const fs::path data_csv = ctx.run.train_dir(model.plugin_name()) / "data.csv";
   const analysis::Table cases = fs::exists(data_csv) ? analysis::Table::read_csv(data_csv.string()) : analysis::Table();
   figures::process_map(map.grid, *map.vs, *map.rq, map.frontier, map.optima, dir / "map.png", cases, verified,
-                       map_notes(map));
+                       map.trust);
 }
 
 }  // namespace spreadmap
