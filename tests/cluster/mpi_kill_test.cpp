@@ -9,6 +9,7 @@
 #include <iostream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "cluster/cluster_support.hpp"
@@ -18,18 +19,33 @@ namespace t = spreadmap::test;
 
 namespace {
 
-// The pid of MPI rank `rank` of the run writing to `out`, or -1.
-pid_t rank_pid(int rank, const fs::path &out) {
+// The processes descending from `root` (its children, theirs, ...), read from /proc's children
+// lists: a few files, where scanning all of /proc takes seconds on a host with many processes.
+std::vector<pid_t> descendants(pid_t root) {
+  std::vector<pid_t> found, frontier{root};
+  while (!frontier.empty()) {
+    const pid_t p = frontier.back();
+    frontier.pop_back();
+    std::error_code ec;
+    for (const auto &task : fs::directory_iterator(fs::path("/proc") / std::to_string(p) / "task", ec)) {
+      std::istringstream children(t::slurp(task.path() / "children"));
+      for (pid_t c; children >> c;) {
+        found.push_back(c);
+        frontier.push_back(c);
+      }
+    }
+  }
+  return found;
+}
+
+// The pid of MPI rank `rank` among the processes mpirun (`job`) started, or -1.
+pid_t rank_pid(int rank, pid_t job) {
   const std::string want = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
-  for (const auto &e : fs::directory_iterator("/proc")) {
-    const std::string name = e.path().filename().string();
-    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
-    std::string cmdline = t::slurp(e.path() / "cmdline"), environ = t::slurp(e.path() / "environ");
-    for (auto &c : cmdline) c = c == '\0' ? ' ' : c;
-    if (!t::contains(cmdline, out.string())) continue;
+  for (const pid_t p : descendants(job)) {
+    const std::string environ = t::slurp(fs::path("/proc") / std::to_string(p) / "environ");
     std::size_t at = 0;
     for (std::size_t end; (end = environ.find('\0', at)) != std::string::npos; at = end + 1)
-      if (environ.compare(at, end - at, want) == 0) return std::stoi(name);
+      if (environ.compare(at, end - at, want) == 0) return p;
   }
   return -1;
 }
@@ -41,28 +57,43 @@ std::map<std::string, t::FileId> files_below(const fs::path &dir) {
   return out;
 }
 
-// One try of the scene: three ranks (two workers); the moment the first case is seen finished, both
-// workers are frozen (SIGSTOP: no case can finish after that) and worker rank 1 is killed. Returns
-// mpirun's outcome.
+int finished_cases(const fs::path &run) {
+  int n = 0;
+  for (int i = 0; i < t::mini_cases; ++i) n += t::finished(run / "cases" / t::case_id(i));
+  return n;
+}
+
+// One try of the scene: three ranks (two workers). Both workers are frozen (SIGSTOP) the moment they
+// are found and then let run in slices of a few milliseconds, frozen between slices, until a case is
+// seen finished; worker rank 1 is then killed while both are still frozen, so no case can finish
+// after the look. The slices make the test independent of how fast the machine runs a case: a slice
+// is far shorter than a case. Returns mpirun's outcome.
 t::Outcome kill_a_worker_midway(const std::vector<std::string> &args, const fs::path &run) {
   t::Child job(t::under_mpirun(3, args));
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(4);
   auto waiting = [&] { return job.running() && std::chrono::steady_clock::now() < deadline; };
-  pid_t victim = -1, other = -1;  // found before the case ends: the freeze follows its end closely
+  pid_t victim = -1, other = -1;
   while (waiting() && (victim <= 0 || other <= 0)) {
-    victim = rank_pid(1, run);
-    other = rank_pid(2, run);
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    if (victim <= 0) victim = rank_pid(1, job.pid());
+    if (other <= 0) other = rank_pid(2, job.pid());
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
-  while (waiting() && !t::finished(run / "cases/c000")) std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  EXPECT_TRUE(job.running()) << "the job ended before a rank could be killed";
   EXPECT_GT(victim, 0) << "rank 1 not found";
   EXPECT_GT(other, 0) << "rank 2 not found";
-  if (victim > 0 && other > 0) {
+  if (victim <= 0 || other <= 0) return job.wait();
+  auto freeze = [&] {
     ::kill(other, SIGSTOP);
     ::kill(victim, SIGSTOP);
-    EXPECT_EQ(::kill(victim, SIGKILL), 0);  // mpirun then ends rank 2, stopped or not
+  };
+  freeze();
+  while (waiting() && finished_cases(run) == 0) {
+    ::kill(victim, SIGCONT);
+    ::kill(other, SIGCONT);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    freeze();
   }
+  EXPECT_TRUE(job.running()) << "the job ended before a rank could be killed";
+  EXPECT_EQ(::kill(victim, SIGKILL), 0);  // mpirun then ends rank 2, stopped or not
   return job.wait();
 }
 
@@ -74,9 +105,8 @@ TEST(MpiKill, TheRerunComputesOnlyTheCasesTheKilledJobLeftUnfinished) {
   const std::vector<std::string> args = {"run", t::mini_quickstart().string(), "--out", run.string(), "--executor",
                                          "mpi"};
 
-  // 1. kill a worker once a case is done. A case lasts about 0.2 s: on a loaded machine the test may
-  // see the first case late, when the others are done too, which leaves nothing to prove; the scene
-  // is then tried again from scratch (at most three tries).
+  // 1. kill a worker once a case is done. Should the workers finish every case within one slice
+  // (which would leave nothing to prove), the scene is tried again from scratch (at most three tries).
   std::vector<std::string> done, todo;
   for (int attempt = 1; attempt <= 3 && todo.empty(); ++attempt) {
     fs::remove_all(run);

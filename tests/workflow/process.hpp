@@ -38,6 +38,7 @@ class Child {
   Child(const Child &) = delete;
   Child &operator=(const Child &) = delete;
   void signal(int sig) const;
+  pid_t pid() const { return pid_; }
   bool running();
   Outcome wait();
 
