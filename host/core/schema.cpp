@@ -242,9 +242,17 @@ void fill_defaults(const SchemaView &schema, nlohmann::json &out, const Location
 }
 
 nlohmann::json schema_json(const sm_plugin_v1 &d) {
+  return {{"kind", d.kind},
+          {"name", d.name},
+          {"version", d.version},
+          {"summary", d.summary ? d.summary : ""},
+          {"params", params_json(SchemaView::of(d))}};
+}
+
+nlohmann::json params_json(const SchemaView &schema) {
   auto params = nlohmann::json::array();
-  for (std::uint32_t i = 0; i < d.n_params; ++i) {
-    const auto &p = d.params[i];
+  for (std::size_t i = 0; i < schema.n; ++i) {
+    const auto &p = schema.params[i];
     nlohmann::json e = {{"name", p.name},
                         {"type", type_name(p.type)},
                         {"unit", p.unit ? p.unit : "-"},
@@ -263,19 +271,19 @@ nlohmann::json schema_json(const sm_plugin_v1 &d) {
     if (p.type == SM_ENUM) e["choices"] = split_choices(p.choices);
     params.push_back(e);
   }
-  return {{"kind", d.kind},
-          {"name", d.name},
-          {"version", d.version},
-          {"summary", d.summary ? d.summary : ""},
-          {"params", params}};
+  return params;
 }
 
 std::string describe_schema(const sm_plugin_v1 &d) {
-  std::string out = fmt::format("{}/{} {} — {}\n", d.kind, d.name, d.version, d.summary ? d.summary : "");
-  out += fmt::format("  {:<26} {:<8} {:<9} {:<22} {:<12} {}\n", "parameter", "type", "unit", "range", "default",
+  return fmt::format("{}/{} {} — {}\n", d.kind, d.name, d.version, d.summary ? d.summary : "") +
+         describe_params(SchemaView::of(d));
+}
+
+std::string describe_params(const SchemaView &schema, const std::string &column) {
+  std::string out = fmt::format("  {:<26} {:<8} {:<9} {:<22} {:<12} {}\n", column, "type", "unit", "range", "default",
                      "meaning");
-  for (std::uint32_t i = 0; i < d.n_params; ++i) {
-    const auto &p = d.params[i];
+  for (std::size_t i = 0; i < schema.n; ++i) {
+    const auto &p = schema.params[i];
     std::string range, def;
     if (p.type == SM_NUMBER || p.type == SM_INTEGER) range = "[" + fmt_num(p.min) + ", " + fmt_num(p.max) + "]";
     if (p.type == SM_ENUM) range = p.choices ? p.choices : "";

@@ -49,9 +49,13 @@ nlohmann::json yaml_to_json(const YAML::Node &node);
 // position, so messages name only the source and the key.
 YAML::Node json_to_yaml(const nlohmann::json &value);
 
-// The schema as a human table, for `spreadmap plugins NAME`.
+// The schema as a human table, for `spreadmap plugins NAME` (describe_schema, with the plugin's name
+// and summary above) and `spreadmap stages NAME` (describe_params).
 std::string describe_schema(const sm_plugin_v1 &p);
-// The schema as JSON, for `spreadmap plugins --format json`.
+std::string describe_params(const SchemaView &schema, const std::string &column = "parameter");
+// The schema as JSON, for `spreadmap plugins --format json` (schema_json: the plugin's name,
+// version and summary beside params_json's list).
 nlohmann::json schema_json(const sm_plugin_v1 &p);
+nlohmann::json params_json(const SchemaView &schema);
 
 }  // namespace spreadmap

@@ -11,19 +11,9 @@
 #include "workflow/run/run_lock.hpp"
 #include "workflow/scene/scene_section.hpp"
 #include "workflow/stage.hpp"
+#include "workflow/stage_table.hpp"
 
 namespace spreadmap {
-
-std::unique_ptr<Stage> make_stage(const std::string &kind) {
-  if (kind == "simulate") return make_simulate_stage();
-  if (kind == "characterise") return make_characterise_stage();
-  if (kind == "train") return make_train_stage();
-  if (kind == "map") return make_map_stage();
-  if (kind == "tradeoff") return make_tradeoff_stage();
-  if (kind == "calibrate") return make_calibrate_stage();
-  if (kind == "verify") return make_verify_stage();
-  throw InputError("unknown stage '" + kind + "'");
-}
 
 // report.html after every stage: a view of the run's files, never a result, so a failure to write it
 // is said and the run goes on.
@@ -37,7 +27,7 @@ static void refresh_report(const fs::path &run) {
 
 static bool needs_scene(const Workflow &wf) {
   for (const auto &s : wf.stages)
-    if (s.kind == "simulate" || s.kind == "characterise" || s.kind == "tradeoff" || s.kind == "verify") return true;
+    if (find_stage(s.kind)->needs_scene) return true;
   return false;
 }
 
@@ -45,8 +35,10 @@ Validated validate_workflow(const fs::path &file, PluginRegistry &registry) {
   Validated v{load_workflow(file), {}, {}};
   Diagnostics diag;
   if (needs_scene(v.wf) || v.wf.root["scene"]) v.scene = resolve_scene(v.wf, registry, diag);
-  for (const auto &entry : v.wf.stages) {
-    auto stage = make_stage(entry.kind);
+  for (auto &entry : v.wf.stages) {
+    const StageInfo &info = *find_stage(entry.kind);  // load_workflow refused any other
+    entry.settings = check_stage_settings(info, entry.config, v.wf.file.string(), diag);
+    auto stage = info.make();
     stage->validate(v.wf, entry, v.scene ? &*v.scene : nullptr, registry, diag);
     v.stages.push_back(std::move(stage));
   }

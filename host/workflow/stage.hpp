@@ -54,15 +54,10 @@ class Stage {
   virtual void adjust_scene(Scene &, const RunDirectory &) {}
 };
 
-std::unique_ptr<Stage> make_simulate_stage();
-// verify_rounds > 0: the verify loop's own, which also measures the runs of its first rounds.
+// The stages are the rows of stage_table() (stage_table.hpp). The characterise stage is also made
+// by the verify loop: verify_rounds > 0 makes the loop's own, which also measures the runs of its
+// first rounds.
 std::unique_ptr<Stage> make_characterise_stage(std::size_t verify_rounds = 0);
-std::unique_ptr<Stage> make_train_stage();
-std::unique_ptr<Stage> make_map_stage();
-std::unique_ptr<Stage> make_tradeoff_stage();
-std::unique_ptr<Stage> make_calibrate_stage();
-std::unique_ptr<Stage> make_verify_stage();
-std::unique_ptr<Stage> make_stage(const std::string &kind);
 
 // The whole workflow: load, validate everything (scene, every stage), then run the selected
 // stages in order. validate_only stops after validation.

@@ -7,6 +7,7 @@
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/suggest.hpp"
+#include "workflow/stage_table.hpp"
 
 namespace spreadmap {
 
@@ -95,14 +96,13 @@ Workflow load_workflow(const fs::path &file) {
         kind = s.begin()->first.as<std::string>();
         config = s.begin()->second;
       } else {
-        diag.error(Location::of(f, s), path,
-                   "a stage is one key (simulate, characterise, train or map) with its settings");
+        diag.error(Location::of(f, s), path, "a stage is one key (" + join(stage_names()) + ") with its settings");
         continue;
       }
-      if (std::find(stage_kinds().begin(), stage_kinds().end(), kind) == stage_kinds().end()) {
-        const std::string near = closest(kind, stage_kinds());
+      if (!find_stage(kind)) {
+        const std::string near = closest(kind, stage_names());
         diag.error(Location::of(f, s.IsMap() ? s.begin()->first : s), path, "unknown stage '" + kind + "'",
-                   (near.empty() ? "" : "did you mean '" + near + "'? ") + "stages: " + join(stage_kinds()));
+                   (near.empty() ? "" : "did you mean '" + near + "'? ") + "stages: " + join(stage_names()));
         continue;
       }
       // each stage writes its own files in the run directory (and its manifest entry): once only

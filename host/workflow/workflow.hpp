@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -15,9 +16,12 @@ namespace spreadmap {
 namespace fs = std::filesystem;
 
 struct StageEntry {
-  std::string kind;   // simulate | characterise | train | map | verify | tradeoff
+  std::string kind;  // a row of stage_table()
   YAML::Node config;  // its mapping (may be empty)
   Location where;
+  // Its settings checked against the stage's schema (stage_table.hpp): every key, numbers in SI,
+  // tables as JSON; null where a value was refused. Filled by validate_workflow.
+  nlohmann::json settings = nlohmann::json::object();
 };
 
 struct Workflow {
@@ -38,11 +42,5 @@ struct Workflow {
 YAML::Node load_yaml(const fs::path &file);
 // Throws InputError listing every problem of the file's shape.
 Workflow load_workflow(const fs::path &file);
-
-inline const std::vector<std::string> &stage_kinds() {
-  static const std::vector<std::string> kinds = {"calibrate", "simulate", "characterise", "train",
-                                                 "map",       "verify",   "tradeoff"};
-  return kinds;
-}
 
 }  // namespace spreadmap

@@ -2,7 +2,8 @@
 // (`spreadmap validate`, one run over all mutants of a file): each scalar becomes a word, a NaN, 1e308 and a quantity
 // of the wrong dimension, and each key gets a typo. Whatever the mutation, the program must answer as it does for any
 // bad input — exit 0 (the mutation happens to be valid) or 2, never a signal, never a raw library message (a JSON or
-// YAML exception, a sanitizer report) — and an error must name the file and the key it refuses.
+// YAML exception, a sanitizer report) — and an error must name the file and the key it refuses. A typo in a stage's
+// setting (stages[i].STAGE.KEY) is always refused, at its file:line, with the key it meant as the did-you-mean.
 #include <gtest/gtest.h>
 #include <unistd.h>
 #include <yaml-cpp/yaml.h>
@@ -57,6 +58,7 @@ struct Mutant {
   std::string what;  // "scene.powder.count = abc"
   std::string key;   // the key the mutation touched: the message must name it
   YAML::Node doc;
+  std::string meant = "";  // a stage setting's typo: the key the did-you-mean must offer
 };
 
 // The last map key of a path (a list entry is named by the key that holds the list).
@@ -86,7 +88,8 @@ std::vector<Mutant> mutants(const fs::path &workflow) {
     const YAML::Node value = YAML::Clone(holder[key.back()]);
     holder.remove(key.back());
     holder[key.back() + "x"] = value;
-    out.push_back({dotted(key) + " renamed " + key.back() + "x", key.back() + "x", doc});
+    const bool stage_setting = key.size() == 4 && key[0] == "stages";  // stages.N.STAGE.KEY
+    out.push_back({dotted(key) + " renamed " + key.back() + "x", key.back() + "x", doc, stage_setting ? key.back() : ""});
   }
   return out;
 }
@@ -113,6 +116,13 @@ struct Answer {
 void check_answer(const Mutant &m, const fs::path &file, const Answer &a, std::size_t &refused,
                   std::vector<std::string> &accepted) {
   SCOPED_TRACE(m.what);
+  if (!m.meant.empty()) {
+    EXPECT_TRUE(a.refused) << "a typo in a stage's settings was accepted";
+    EXPECT_NE(a.message.find("did you mean '" + m.meant + "'"), std::string::npos) << a.message;
+    const std::size_t at = a.message.find(file.string() + ":");
+    EXPECT_TRUE(at != std::string::npos && std::isdigit(static_cast<unsigned char>(a.message[at + file.string().size() + 1])))
+        << "no file:line:\n" << a.message;
+  }
   if (!a.refused) {
     accepted.push_back(m.what);
     return;

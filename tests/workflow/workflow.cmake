@@ -24,6 +24,9 @@ endfunction()
 
 spreadmap_workflow_test(catalogue SOURCES ${CMAKE_CURRENT_LIST_DIR}/catalogue_test.cpp TIMEOUT 120)
 spreadmap_workflow_test(cli SOURCES ${CMAKE_CURRENT_LIST_DIR}/cli_test.cpp TIMEOUT 120)
+# The command and stage tables against what the program prints.
+spreadmap_workflow_test(command_table SOURCES ${CMAKE_CURRENT_LIST_DIR}/command_table_test.cpp TIMEOUT 120)
+target_link_libraries(test_workflow_command_table PRIVATE spreadmap_cli)
 spreadmap_workflow_test(resume SOURCES ${CMAKE_CURRENT_LIST_DIR}/resume_test.cpp TIMEOUT 600)
 # What a run reads back is checked: damaged checkpoints and heaps, replaced states, stale temporaries.
 spreadmap_workflow_test(read_back SOURCES ${CMAKE_CURRENT_LIST_DIR}/read_back_test.cpp TIMEOUT 600)

@@ -16,6 +16,7 @@
 #include "workflow/calibrate/calibration.hpp"
 #include "workflow/calibrate/calibration_file.hpp"
 #include "workflow/stage.hpp"
+#include "workflow/stage_table.hpp"
 
 #include <spreadmap/params.hpp>
 
@@ -23,8 +24,9 @@ namespace spreadmap {
 namespace {
 namespace sm = spreadmap;
 
-constexpr sm_param_v1 stage_params[] = {
-    sm::text("file", "", "the calibration file (docs/calibration.md), relative to the workflow"),
+constexpr sm_param_v1 calibrate_schema[] = {
+    {"file", SM_STRING, "-", 0, 0, 0, nullptr, 1, nullptr,
+     "the calibration file (docs/calibration.md), relative to the workflow, e.g. glass_beads.yaml"},
     sm::boolean("apply", false, "the later stages use the calibrated contact parameters (each one's best value)"),
 };
 
@@ -33,12 +35,12 @@ class CalibrateStage : public Stage {
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
-    const auto v = validate_params({stage_params, std::size(stage_params)}, entry.config, file, "calibrate", diag);
-    apply_ = v.contains("apply") && v["apply"].is_boolean() && v["apply"].get<bool>();
-    const std::string name = v.contains("file") && v["file"].is_string() ? v["file"].get<std::string>() : "";
-    if (name.empty()) {
-      diag.error(Location::of(file, entry.config), "calibrate.file", "required value missing",
-                 "name the calibration file: file: glass_beads.yaml (docs/calibration.md)");
+    apply_ = setting_flag(entry.settings, "apply", false);
+    const std::string name = setting_text(entry.settings, "file");
+    if (name.empty()) {  // a missing key is reported by the settings' check
+      if (entry.config["file"])
+        diag.error(Location::of(file, entry.config["file"]), "calibrate.file", "is empty",
+                   "name the calibration file: file: glass_beads.yaml (docs/calibration.md)");
       return;
     }
     try {
@@ -90,5 +92,6 @@ class CalibrateStage : public Stage {
 }  // namespace
 
 std::unique_ptr<Stage> make_calibrate_stage() { return std::make_unique<CalibrateStage>(); }
+SchemaView calibrate_settings() { return {calibrate_schema, std::size(calibrate_schema)}; }
 
 }  // namespace spreadmap

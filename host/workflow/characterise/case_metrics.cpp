@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <spreadmap/params.hpp>
 
 #include "core/files.hpp"
 #include "core/heightmap_vti.hpp"
@@ -17,7 +18,18 @@
 namespace spreadmap {
 namespace {
 
-const std::set<std::string> host_keys = {"use", "region", "render"};
+// The stage's own settings; the rest of its mapping are the metrics plugin's parameters.
+constexpr sm_param_v1 characterise_schema[] = {
+    text("use", "layer", "the metrics plugin (spreadmap plugins --kind metrics); its parameters sit beside these"),
+    table("region", "the measured area {x: [14 mm, 24 mm], y: [0 mm, 2.5 mm]} (default: the spreader's path)"),
+    table("render", "true, false or the figure's settings {width: 1920, vector: pdf}"),
+};
+
+std::set<std::string> host_keys() {
+  std::set<std::string> out;
+  for (const auto &p : characterise_schema) out.insert(p.name);
+  return out;
+}
 
 void read_bounds(const YAML::Node &n, const std::string &file, const std::string &key, double &lo, double &hi,
                  Diagnostics &diag) {
@@ -88,11 +100,13 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
 
 }  // namespace
 
+SchemaView characterise_settings() { return {characterise_schema, std::size(characterise_schema)}; }
+
 CharacteriseSettings read_characterise_settings(const Workflow &wf, const YAML::Node &cfg, const Scene *scene,
                                                 PluginRegistry &registry, Diagnostics &diag) {
   CharacteriseSettings s;
   const std::string file = wf.file.string();
-  s.request.plugin = cfg["use"] ? cfg["use"].as<std::string>() : "layer";
+  s.request.plugin = cfg["use"] && cfg["use"].IsScalar() ? cfg["use"].Scalar() : "layer";
   const LoadedPlugin *plugin = nullptr;
   try {
     plugin = &registry.get("metrics", s.request.plugin);
@@ -100,7 +114,7 @@ CharacteriseSettings read_characterise_settings(const Workflow &wf, const YAML::
     diag.error(Location::of(file, cfg["use"] ? cfg["use"] : cfg), "characterise.use", e.what());
   }
   if (plugin)
-    s.request.params = validate_params(SchemaView::of(*plugin->descriptor), cfg, file, "characterise", diag, host_keys);
+    s.request.params = validate_params(SchemaView::of(*plugin->descriptor), cfg, file, "characterise", diag, host_keys());
   if (!scene) return s;
   try {
     s.region = default_region(*scene, describe_spreader(*scene, registry, file));

@@ -16,20 +16,22 @@
 namespace spreadmap {
 namespace {
 
+constexpr sm_param_v1 map_schema[] = {
+    text("model", "", "the trained surrogate to map (default: the train stage's first)"),
+    text("grid", "", "points per input, e.g. 41x41 (default 41 per mapped input)"),
+    table("rq_max", "roughness targets: one or a list, e.g. [100 um, 110 um]; each gets an optimum"),
+    number("confidence", "-", 0.5, 1, default_confidence,
+           "the wanted P(R_q <= target) of the optimum, in [0.5, 1); 0.5 chooses by the predicted mean"),
+    table("render", "true, false or the figure's settings {width: 1920, vector: pdf}"),
+};
+
 class MapStage : public Stage {
  public:
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     const YAML::Node &cfg = entry.config;
-    for (const auto &kv : cfg) {
-      const std::string k = kv.first.as<std::string>();
-      if (k != "model" && k != "grid" && k != "rq_max" && k != "confidence" && k != "render") {
-        const std::string near = closest(k, {"model", "grid", "rq_max", "confidence", "render"});
-        diag.error(Location::of(file, kv.first), "map." + k, "unknown key",
-                   (near.empty() ? "" : "did you mean '" + near + "'? ") + "known: model, grid, rq_max, confidence, render");
-      }
-    }
+    const nlohmann::json &set = entry.settings;
     std::vector<std::string> trained;  // by this workflow's train stage, when it has one
     for (const auto &s : wf.stages)
       if (s.kind == "train") {
@@ -37,8 +39,8 @@ class MapStage : public Stage {
         for (const auto &m : read_train_config(wf, s, registry, ignore).models) trained.push_back(m.first);
       }
     if (!trained.empty()) model_ = trained.front();
-    if (cfg["model"]) {
-      model_ = cfg["model"].as<std::string>();
+    if (setting_text(set, "model") != "") {
+      model_ = setting_text(set, "model");
       if (!trained.empty() && std::find(trained.begin(), trained.end(), model_) == trained.end()) {
         const std::string near = closest(model_, trained);
         diag.error(Location::of(file, cfg["model"]), "map.model", "'" + model_ + "' is not trained by this workflow",
@@ -46,7 +48,7 @@ class MapStage : public Stage {
       }
     }
     if (model_.empty()) model_ = "bpnn";
-    grid_ = cfg["grid"] ? cfg["grid"].as<std::string>() : "";
+    grid_ = setting_text(set, "grid");
     if (!grid_.empty()) {
       try {
         parse_grid_points(grid_, 2);
@@ -67,14 +69,11 @@ class MapStage : public Stage {
         }
       }
     }
-    if (const YAML::Node c = cfg["confidence"]) {
-      try {
-        confidence_ = parse_confidence(c.as<std::string>(), "map.confidence");
-      } catch (const std::exception &e) {
-        diag.error(Location::of(file, c), "map.confidence", e.what(),
-                   "the wanted P(R_q <= target) of the optimum, in [0.5, 1), e.g. 0.9");
-      }
-    }
+    confidence_ = setting_number(set, "confidence", default_confidence);
+    if (confidence_ == 1)
+      diag.error(Location::of(file, cfg["confidence"]), "map.confidence",
+                 "P(R_q <= target) = 1 asks for an infinite margin on the prediction",
+                 "the wanted P(R_q <= target) of the optimum, in [0.5, 1), e.g. 0.9");
     style_ = figures::read_style(cfg["render"], true, false, file, "map.render", diag);
     render_ = style_.on;
   }
@@ -125,5 +124,6 @@ class MapStage : public Stage {
 }  // namespace
 
 std::unique_ptr<Stage> make_map_stage() { return std::make_unique<MapStage>(); }
+SchemaView map_settings() { return {map_schema, std::size(map_schema)}; }
 
 }  // namespace spreadmap

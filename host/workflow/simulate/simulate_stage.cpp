@@ -16,6 +16,7 @@
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/figures/stage_figures.hpp"
 #include "workflow/stage.hpp"
+#include "workflow/stage_table.hpp"
 
 namespace spreadmap {
 namespace {
@@ -32,21 +33,21 @@ void recover_timing(nlohmann::json &c, const fs::path &dir) {
   }
 }
 
+constexpr sm_param_v1 simulate_schema[] = {
+    table("design", "the settings to simulate: type full_factorial, list, latin_hypercube or adaptive, and the "
+                    "variables' values (docs/workflows.md)"),
+    integer("replicates", 1, max_replicates, 1, "runs of each design point, each with its own heap"),
+    table("render", "true, false or the figure's settings {width: 1920, vector: pdf, frames: true}"),
+};
+
 class SimulateStage : public Stage {
  public:
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
-    for (const auto &kv : entry.config) {
-      const std::string key = kv.first.as<std::string>();
-      if (key == "render") {
-        style_ = figures::read_style(kv.second, true, true, file, "simulate.render", diag);
-        render_ = style_.on;
-      }
-      if (key != "design" && key != "render" && key != "replicates")
-        diag.error(Location::of(file, kv.first), "simulate." + key, "unknown key", "known: design, render, replicates");
-    }
-    replicates_ = read_replicates(entry.config["replicates"], file, "simulate.replicates", 1, diag);
+    style_ = figures::read_style(entry.config["render"], true, true, file, "simulate.render", diag);
+    render_ = style_.on;
+    replicates_ = setting_count(entry.settings, "replicates", 1);
     if (!scene) return;  // scene errors already reported
     design_ = parse_design(entry.config["design"], file, "simulate.design", *scene, registry, diag);
     if (design_.type == "adaptive" && replicates_ > 1)
@@ -148,5 +149,6 @@ class SimulateStage : public Stage {
 }  // namespace
 
 std::unique_ptr<Stage> make_simulate_stage() { return std::make_unique<SimulateStage>(); }
+SchemaView simulate_settings() { return {simulate_schema, std::size(simulate_schema)}; }
 
 }  // namespace spreadmap

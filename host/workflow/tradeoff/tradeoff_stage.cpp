@@ -27,6 +27,7 @@
 #include "workflow/figures/stage_figures.hpp"
 #include "workflow/scene/scene_section.hpp"
 #include "workflow/stage.hpp"
+#include "workflow/stage_table.hpp"
 
 namespace spreadmap {
 namespace {
@@ -45,30 +46,23 @@ struct Fidelity {
 using Stats = analysis::MeanSd;
 const auto stats = analysis::mean_sd;
 
+constexpr sm_param_v1 tradeoff_schema[] = {
+    integer("heaps", 2, 100, 3, "heaps (seeds) run at each fidelity: their scatter is the yardstick"),
+    table("fidelities", "a list of at least 2: {name: reference, time.safety: 0.2}, {name: default}, ... each a "
+                        "name and the scene keys it changes"),
+    table("render", "true, false or the figure's settings {width: 1920, vector: pdf}"),
+};
+
 class TradeoffStage : public Stage {
  public:
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     const YAML::Node &cfg = entry.config;
-    for (const auto &kv : cfg) {
-      const std::string k = kv.first.as<std::string>();
-      if (k != "heaps" && k != "fidelities" && k != "render")
-        diag.error(Location::of(file, kv.first), "tradeoff." + k, "unknown key", "known: heaps, fidelities, render");
-    }
     if (scene && scene->layers.count > 1)
       diag.error(entry.where, "tradeoff", "measures one pass; a multi-layer scene is not supported yet",
                  "spread one layer in the tradeoff's workflow (scene.layers.count: 1)");
-    if (cfg["heaps"]) {
-      try {
-        heaps_ = cfg["heaps"].as<int>();
-      } catch (const YAML::Exception &) {
-        heaps_ = 0;
-      }
-      if (heaps_ < 2 || heaps_ > 100)
-        diag.error(Location::of(file, cfg["heaps"]), "tradeoff.heaps", "must be a whole number from 2 to 100",
-                   "at least 2 heaps are needed to measure the scatter");
-    }
+    heaps_ = int(setting_count(entry.settings, "heaps", std::size_t(heaps_)));
     style_ = figures::read_style(cfg["render"], false, false, file, "tradeoff.render", diag);
     render_ = style_.on;
     const YAML::Node list = cfg["fidelities"];
@@ -203,5 +197,6 @@ class TradeoffStage : public Stage {
 }  // namespace
 
 std::unique_ptr<Stage> make_tradeoff_stage() { return std::make_unique<TradeoffStage>(); }
+SchemaView tradeoff_settings() { return {tradeoff_schema, std::size(tradeoff_schema)}; }
 
 }  // namespace spreadmap

@@ -2,6 +2,7 @@
 
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
+#include "workflow/stage_table.hpp"
 
 namespace spreadmap {
 
@@ -13,23 +14,27 @@ std::vector<std::string> names(const YAML::Node &n) {
   else if (n.IsScalar()) out.push_back(n.as<std::string>());
   return out;
 }
+constexpr sm_param_v1 train_schema[] = {
+    table("model", "a surrogate plugin or a list of them, e.g. [bpnn, gp] (default bpnn)"),
+    table("params", "the surrogate's parameters {...}, or one mapping per model {bpnn: {...}, gp: {...}}"),
+    table("inputs", "input columns (default: the design's variables)"),
+    table("outputs", "output columns (default [vs, rq])"),
+    text("split", "auto", "auto (by the number of cases: holdout, 5-fold or leave-one-out) | holdout | kfold:K | loo "
+                          "| column:NAME"),
+    integer("folds", 2, 1000, 5, "K of a plain split: kfold"),
+    integer("seed", 0, 1e9, 1, "seed of the split"),
+    table("render", "true, false or the figure's settings {width: 1920, vector: pdf}"),
+};
+
 }  // namespace
+
+SchemaView train_settings() { return {train_schema, std::size(train_schema)}; }
 
 TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, PluginRegistry &registry,
                               Diagnostics &diag) {
   const std::string file = wf.file.string();
   const YAML::Node &cfg = entry.config;
-  static const std::vector<std::string> keys = {"model", "params", "inputs", "outputs",
-                                                "split", "folds",  "seed",   "render"};
   TrainConfig c;
-  for (const auto &kv : cfg) {
-    const std::string k = kv.first.as<std::string>();
-    if (std::find(keys.begin(), keys.end(), k) == keys.end()) {
-      const auto near = closest(k, keys);
-      diag.error(Location::of(file, kv.first), "train." + k, "unknown key",
-                 (near.empty() ? "" : "did you mean '" + near + "'? ") + "known: " + join(keys));
-    }
-  }
   const std::vector<std::string> models = cfg["model"] ? names(cfg["model"]) : std::vector<std::string>{"bpnn"};
   const YAML::Node params = cfg["params"];
   for (const auto &m : models) {
@@ -47,16 +52,11 @@ TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, Plugi
   }
   if (cfg["inputs"]) c.inputs = names(cfg["inputs"]);
   if (cfg["outputs"]) c.outputs = names(cfg["outputs"]);
-  try {
-    if (cfg["folds"]) c.folds = cfg["folds"].as<std::size_t>();
-    if (cfg["seed"]) c.seed = cfg["seed"].as<std::uint64_t>();
-  } catch (const YAML::Exception &) {
-    diag.error(Location::of(file, cfg), "train", "folds and seed must be whole numbers");
-  }
-  if (cfg["split"]) {
+  c.folds = setting_count(entry.settings, "folds", c.folds);
+  c.seed = setting_count(entry.settings, "seed", c.seed);
+  if (cfg["split"] && cfg["split"].IsScalar()) {
     try {
-      if (!cfg["split"].IsScalar()) throw std::invalid_argument("a split is one word, e.g. loo or kfold:5");
-      c.validation = analysis::parse_validation(cfg["split"].as<std::string>(), c.folds);
+      c.validation = analysis::parse_validation(setting_text(entry.settings, "split", "auto"), c.folds);
     } catch (const std::exception &e) {
       diag.error(Location::of(file, cfg["split"]), "train.split", e.what(),
                  "auto (the default) chooses by size: holdout from " + std::to_string(analysis::holdout_from_rows) +
@@ -65,7 +65,6 @@ TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, Plugi
   }
   c.style = figures::read_style(cfg["render"], true, false, file, "train.render", diag);
   c.render = c.style.on;
-  if (c.folds < 2) diag.error(Location::of(file, cfg["folds"]), "train.folds", "needs at least 2 folds");
   return c;
 }
 

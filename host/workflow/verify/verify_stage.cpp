@@ -23,6 +23,7 @@
 #include "workflow/simulate/case_runner.hpp"
 #include "workflow/simulate/replicates.hpp"
 #include "workflow/stage.hpp"
+#include "workflow/stage_table.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/verify/verification.hpp"
 #include "workflow/verify/verified_map.hpp"
@@ -54,19 +55,20 @@ std::vector<double> mean_replicate_variance(const fs::path &metrics_csv, const a
   return out;
 }
 
+constexpr sm_param_v1 verify_schema[] = {
+    integer("replicates", 1, max_replicates, default_runs, "runs at the optimum, each with its own heap"),
+    integer("rounds", 1, 10, 1, "rounds of verify, refit and propose again until the optimum is verified"),
+    table("render", "true, false or the figure's settings {width: 1920, vector: pdf}"),
+};
+
 class VerifyStage : public Stage {
  public:
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
-    for (const auto &kv : entry.config) {
-      const std::string key = kv.first.as<std::string>();
-      if (key != "replicates" && key != "render" && key != "rounds")
-        diag.error(Location::of(file, kv.first), "verify." + key, "unknown key", "known: replicates, rounds, render");
-    }
     style_ = figures::read_style(entry.config["render"], true, false, file, "verify.render", diag);
-    runs_ = read_replicates(entry.config["replicates"], file, "verify.replicates", default_runs, diag);
-    rounds_ = read_whole_number(entry.config["rounds"], file, "verify.rounds", 1, 10, 1, diag);
+    runs_ = setting_count(entry.settings, "replicates", default_runs);
+    rounds_ = setting_count(entry.settings, "rounds", 1);
     const StageEntry *map = nullptr, *characterise = nullptr;
     for (std::size_t i = 0; i < wf.stages.size() && &wf.stages[i] != &entry; ++i) {
       if (wf.stages[i].kind == "map") map = &wf.stages[i], map_stage_ = i;
@@ -236,8 +238,8 @@ class VerifyStage : public Stage {
     Diagnostics diag;
     std::vector<std::pair<std::unique_ptr<Stage>, std::size_t>> stages;
     stages.emplace_back(make_characterise_stage(rounds), *characterise_stage_);
-    stages.emplace_back(make_train_stage(), *train_stage_);
-    stages.emplace_back(make_map_stage(), *map_stage_);
+    stages.emplace_back(find_stage("train")->make(), *train_stage_);
+    stages.emplace_back(find_stage("map")->make(), *map_stage_);
     for (auto &[stage, i] : stages) stage->validate(ctx.wf, ctx.wf.stages[i], &ctx.scene, ctx.registry, diag);
     diag.throw_if_any();
     for (auto &[stage, i] : stages) stage->run(ctx);
@@ -275,5 +277,6 @@ class VerifyStage : public Stage {
 }  // namespace
 
 std::unique_ptr<Stage> make_verify_stage() { return std::make_unique<VerifyStage>(); }
+SchemaView verify_settings() { return {verify_schema, std::size(verify_schema)}; }
 
 }  // namespace spreadmap
