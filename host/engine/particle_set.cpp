@@ -4,7 +4,7 @@
 
 #include <cmath>
 #include <fmt/format.h>
-#include <numbers>
+#include <spreadmap/sphere.hpp>
 
 namespace spreadmap::engine {
 
@@ -56,7 +56,7 @@ void ParticleSet::fill_defaults(double density, std::uint32_t first_id) {
     if (c->empty()) c->assign(n, 0.0);
   if (mass.empty() && density > 0) {
     mass.resize(n);
-    for (std::size_t i = 0; i < n; ++i) mass[i] = density * 4.0 / 3.0 * std::numbers::pi * std::pow(radius[i], 3);
+    for (std::size_t i = 0; i < n; ++i) mass[i] = sphere_mass(density, radius[i]);
   }
   if (id.empty()) {
     id.resize(n);

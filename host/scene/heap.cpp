@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <functional>
 
 #include <fmt/format.h>
+#include <spreadmap/sphere.hpp>
 
 namespace spreadmap::scene {
 namespace {
@@ -182,7 +182,7 @@ Heap insert_heap(const HeapSpec &spec) {
         heap.y.push_back(y);
         heap.z.push_back(z);
         heap.r.push_back(r);
-        heap.solid_volume += sphere_volume_factor * diameters[i] * diameters[i] * diameters[i];
+        heap.solid_volume += sphere_volume(diameters[i]);
         break;
       }
       if (++failures >= spec.attempts_per_sphere) {

@@ -247,10 +247,10 @@ double SizeDistribution::upper() const {
 double SizeDistribution::mean_sphere_volume() const {
   switch (kind) {
     case SizeKind::monodisperse:
-      return sphere_volume_factor * diameter * diameter * diameter;
+      return sphere_volume(diameter);
     case SizeKind::lognormal: {
       const double m = number_median();
-      if (sigma == 0) return sphere_volume_factor * m * m * m;
+      if (sigma == 0) return sphere_volume(m);
       // E[d^3] of a truncated lognormal: m^3 e^{9 s^2/2} [Phi(b - 3s) - Phi(a - 3s)] / [Phi(b) - Phi(a)].
       const double a = std::log(lower() / m) / sigma, b = std::log(upper() / m) / sigma;
       const double moment = m * m * m * std::exp(4.5 * sigma * sigma) *

@@ -27,10 +27,9 @@
 
 #include "scene/scene_error.hpp"
 #include "spreadmap/random.hpp"
+#include "spreadmap/sphere.hpp"
 
 namespace spreadmap::scene {
-
-inline constexpr double sphere_volume_factor = std::numbers::pi / 6.0;  // V = (pi/6) d^3
 
 enum class SizeKind { monodisperse, lognormal, normal, table };
 enum class FractionBasis { number, volume };

@@ -66,6 +66,44 @@ double loo_rmse(const CalibrationFile &c, PluginRegistry &registry, const Eigen:
   return std::sqrt(ss / double(x.rows()));
 }
 
+// The angle of every test at every row of the design [deg] (a row's tests kept from before are read
+// back); adds the simulations' wall time to `seconds`.
+Eigen::MatrixXd simulate_design(const CalibrationFile &c, const Eigen::MatrixXd &x, const fs::path &out,
+                                PluginRegistry &registry, double &seconds) {
+  const auto nt = static_cast<Eigen::Index>(c.tests.size());
+  Eigen::MatrixXd y(x.rows(), nt);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (Eigen::Index t = 0; t < nt; ++t) {
+      const auto &test = c.tests[std::size_t(t)];
+      const fs::path record = out / "cases" / fmt::format("c{:03d}", i) / (test.name + ".json");
+      const auto r = run_bulk_test(test, c.parameters, row(x, i), record, registry);
+      y(i, t) = r.angle.angle_deg;
+      seconds += r.wall_seconds;
+      spdlog::info("calibrate: run {}/{} {} at {}: {:.2f} deg{}", i + 1, x.rows(), test.name,
+                   values_text(c.parameters, row(x, i)), r.angle.angle_deg, r.reused ? " (kept from before)" : "");
+    }
+  return y;
+}
+
+// Each parameter's best value and 68 % set, as calibration.json records them (and said in the log).
+nlohmann::json identified_parameters(const CalibrationFile &c, const Identified &id) {
+  nlohmann::json params = nlohmann::json::object();
+  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
+    const auto &b = c.parameters[k];
+    params[b.name] = {{"best", id.best[k]},
+                      {"lower", id.lower[k]},
+                      {"upper", id.upper[k]},
+                      {"range", {b.lo, b.hi}},
+                      {"bounded", !id.open_at_lo[k] && !id.open_at_hi[k]}};
+    spdlog::info("calibrate: {} = {:.3g} (68 % set {:.3g} to {:.3g}){}", b.name, id.best[k], id.lower[k], id.upper[k],
+                 id.open_at_lo[k] || id.open_at_hi[k]
+                     ? fmt::format(" - reaches the range's {} side: not identified there by these tests",
+                                   id.open_at_lo[k] ? "lower" : "upper")
+                     : "");
+  }
+  return params;
+}
+
 }  // namespace
 
 nlohmann::json run_at(const CalibrationFile &c, const std::vector<double> &values, const fs::path &out,
@@ -97,18 +135,8 @@ nlohmann::json run_calibration(const CalibrationFile &c, const fs::path &out, Pl
                       c.file.string(), t, c.tests[t].name, c.file.string()));
   const Eigen::MatrixXd x = design(c.parameters, c.levels);
   const auto nt = static_cast<Eigen::Index>(c.tests.size());
-  Eigen::MatrixXd y(x.rows(), nt);
   double seconds = 0;
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    for (Eigen::Index t = 0; t < nt; ++t) {
-      const auto &test = c.tests[std::size_t(t)];
-      const fs::path record = out / "cases" / fmt::format("c{:03d}", i) / (test.name + ".json");
-      const auto r = run_bulk_test(test, c.parameters, row(x, i), record, registry);
-      y(i, t) = r.angle.angle_deg;
-      seconds += r.wall_seconds;
-      spdlog::info("calibrate: run {}/{} {} at {}: {:.2f} deg{}", i + 1, x.rows(), test.name,
-                   values_text(c.parameters, row(x, i)), r.angle.angle_deg, r.reused ? " (kept from before)" : "");
-    }
+  const Eigen::MatrixXd y = simulate_design(c, x, out, registry, seconds);
 
   std::vector<MeasuredAngle> measured;
   std::vector<std::unique_ptr<analysis::PluginModel>> models;
@@ -141,20 +169,7 @@ nlohmann::json run_calibration(const CalibrationFile &c, const fs::path &out, Pl
     }
     return p;
   });
-  nlohmann::json params = nlohmann::json::object();
-  for (std::size_t k = 0; k < c.parameters.size(); ++k) {
-    const auto &b = c.parameters[k];
-    params[b.name] = {{"best", id.best[k]},
-                      {"lower", id.lower[k]},
-                      {"upper", id.upper[k]},
-                      {"range", {b.lo, b.hi}},
-                      {"bounded", !id.open_at_lo[k] && !id.open_at_hi[k]}};
-    spdlog::info("calibrate: {} = {:.3g} (68 % set {:.3g} to {:.3g}){}", b.name, id.best[k], id.lower[k], id.upper[k],
-                 id.open_at_lo[k] || id.open_at_hi[k]
-                     ? fmt::format(" - reaches the range's {} side: not identified there by these tests",
-                                   id.open_at_lo[k] ? "lower" : "upper")
-                     : "");
-  }
+  const nlohmann::json params = identified_parameters(c, id);
   for (Eigen::Index t = 0; t < nt; ++t) {
     auto &j = tests[std::size_t(t)];
     j["predicted_deg"] = id.predicted_deg[std::size_t(t)];

@@ -46,28 +46,11 @@ struct SceneLaw {
   nlohmann::json params;
 };
 
-}  // namespace
-
-bool is_calibration_document(const YAML::Node &root) { return root.IsMap() && root["parameters"] && root["tests"]; }
-
-CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &registry) {
-  YAML::Node root = load_yaml(path);  // not const: a missing key reads as undefined, not invalid
-  const std::string file = path.string();
-  Diagnostics diag;
-  CalibrationFile c;
-  c.file = fs::absolute(path);
-  if (!root.IsMap()) {
-    diag.error(Location::of(file, root), "", "a calibration file is a mapping of sections", "see docs/calibration.md");
-    diag.throw_if_any();
-  }
-  const auto top = validate_params({top_params, std::size(top_params)}, root, file, "", diag);
-  if (top.contains("name") && top["name"].is_string()) c.name = top["name"].get<std::string>();
-  const auto design = validate_params({design_params, std::size(design_params)}, root["design"], file, "design", diag);
-  if (design.contains("levels") && design["levels"].is_number()) c.levels = design["levels"].get<int>();
-
-  // tests: each scene read whole (its own errors are its file's), its contact law kept for the ranges
+// tests: each scene read whole (its own errors are its file's), its contact law kept for the ranges.
+// The nodes are not const: a missing key reads as undefined, not invalid.
+std::vector<SceneLaw> read_bulk_tests(YAML::Node root, YAML::Node tests, const std::string &file, CalibrationFile &c,
+                                      PluginRegistry &registry, Diagnostics &diag) {
   std::vector<SceneLaw> laws;
-  YAML::Node tests = root["tests"];
   if (!tests || !tests.IsSequence() || tests.size() == 0)
     diag.error(Location::of(file, tests ? tests : root), "tests", "expected a list of bulk tests",
                "add tests: [{scene: repose.yaml, measure: heap_angle, angle: 32 deg, uncertainty: 1 deg}]");
@@ -106,48 +89,57 @@ CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &regi
     }
     c.tests.push_back(std::move(t));
   }
+  return laws;
+}
 
-  if (!laws.empty()) c.law = laws.front().plugin->descriptor->name;
-  // parameters: keys of every test's contact law, ranges inside the law's own
-  YAML::Node params = root["parameters"];
+// One parameter's range [lo, hi], checked against every test's contact law; kept (from the first
+// law's schema) when every law takes it.
+void read_parameter_range(const std::string &name, YAML::Node name_node, YAML::Node range,
+                          const std::vector<SceneLaw> &laws, const std::string &file, CalibrationFile &c,
+                          Diagnostics &diag) {
+  const std::string key = "parameters." + name;
+  if (!range.IsSequence() || range.size() != 2) {
+    diag.error(Location::of(file, range), key, "expected a range [lo, hi]", "write e.g. " + name + ": [0.2, 0.8]");
+    return;
+  }
+  for (const SceneLaw &law : laws) {
+    const SchemaView schema = SchemaView::of(*law.plugin->descriptor);
+    const sm_param_v1 *p = schema.find(name);
+    if (!p || p->type != SM_NUMBER) {
+      std::vector<std::string> names;
+      for (std::size_t i = 0; i < schema.n; ++i)
+        if (schema.params[i].type == SM_NUMBER) names.push_back(schema.params[i].name);
+      diag.error(Location::of(file, name_node), key,
+                 fmt::format("contact/{} has no number parameter '{}'", law.plugin->descriptor->name, name),
+                 closest(name, names).empty() ? "numbers it takes: " + join(names)
+                                              : "did you mean '" + closest(name, names) + "'?");
+      break;
+    }
+    const auto lo = validate_value(*p, range[0], file, key + "[0]", diag);
+    const auto hi = validate_value(*p, range[1], file, key + "[1]", diag);
+    if (!lo.is_number() || !hi.is_number()) break;
+    if (!(lo.get<double>() < hi.get<double>())) {
+      diag.error(Location::of(file, range), key, "the range is empty: lo must be below hi", "swap or widen the bounds");
+      break;
+    }
+    if (&law == &laws.front()) c.parameters.push_back({name, lo.get<double>(), hi.get<double>()});
+  }
+}
+
+// parameters: keys of every test's contact law, ranges inside the law's own.
+void read_parameter_ranges(YAML::Node root, YAML::Node params, const std::vector<SceneLaw> &laws,
+                           const std::string &file, CalibrationFile &c, Diagnostics &diag) {
   if (!params || !params.IsMap() || params.size() == 0)
     diag.error(Location::of(file, params ? params : root), "parameters",
                "expected a mapping of contact-law keys to ranges",
                "add parameters: {friction: [0.2, 0.8], rolling_friction: [0, 0.3]}");
-  for (auto it = params.IsMap() ? params.begin() : YAML::const_iterator(); params.IsMap() && it != params.end(); ++it) {
-    const std::string name = it->first.as<std::string>(), key = "parameters." + name;
-    const YAML::Node range = it->second;
-    if (!range.IsSequence() || range.size() != 2) {
-      diag.error(Location::of(file, range), key, "expected a range [lo, hi]", "write e.g. " + name + ": [0.2, 0.8]");
-      continue;
-    }
-    for (const SceneLaw &law : laws) {
-      const SchemaView schema = SchemaView::of(*law.plugin->descriptor);
-      const sm_param_v1 *p = schema.find(name);
-      if (!p || p->type != SM_NUMBER) {
-        std::vector<std::string> names;
-        for (std::size_t i = 0; i < schema.n; ++i)
-          if (schema.params[i].type == SM_NUMBER) names.push_back(schema.params[i].name);
-        diag.error(Location::of(file, it->first), key,
-                   fmt::format("contact/{} has no number parameter '{}'", law.plugin->descriptor->name, name),
-                   closest(name, names).empty() ? "numbers it takes: " + join(names)
-                                                : "did you mean '" + closest(name, names) + "'?");
-        break;
-      }
-      const auto lo = validate_value(*p, range[0], file, key + "[0]", diag);
-      const auto hi = validate_value(*p, range[1], file, key + "[1]", diag);
-      if (!lo.is_number() || !hi.is_number()) break;
-      if (!(lo.get<double>() < hi.get<double>())) {
-        diag.error(Location::of(file, range), key, "the range is empty: lo must be below hi",
-                   "swap or widen the bounds");
-        break;
-      }
-      if (&law == &laws.front()) c.parameters.push_back({name, lo.get<double>(), hi.get<double>()});
-    }
-  }
+  for (auto it = params.IsMap() ? params.begin() : YAML::const_iterator(); params.IsMap() && it != params.end(); ++it)
+    read_parameter_range(it->first.as<std::string>(), it->first, it->second, laws, file, c, diag);
+}
 
-  // the surrogate
-  YAML::Node model = root["model"];
+// The surrogate: model.use (default gp) and its parameters, checked by its schema.
+void read_surrogate(YAML::Node root, YAML::Node model, const std::string &file, CalibrationFile &c,
+                    PluginRegistry &registry, Diagnostics &diag) {
   c.model = model && model["use"] ? model["use"].as<std::string>() : "gp";
   try {
     const auto &plugin = registry.get("surrogate", c.model);
@@ -156,6 +148,31 @@ CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &regi
   } catch (const PluginError &e) {
     diag.error(Location::of(file, model ? model["use"] : root), "model.use", e.what());
   }
+}
+
+}  // namespace
+
+bool is_calibration_document(const YAML::Node &root) { return root.IsMap() && root["parameters"] && root["tests"]; }
+
+CalibrationFile read_calibration_file(const fs::path &path, PluginRegistry &registry) {
+  YAML::Node root = load_yaml(path);  // not const: a missing key reads as undefined, not invalid
+  const std::string file = path.string();
+  Diagnostics diag;
+  CalibrationFile c;
+  c.file = fs::absolute(path);
+  if (!root.IsMap()) {
+    diag.error(Location::of(file, root), "", "a calibration file is a mapping of sections", "see docs/calibration.md");
+    diag.throw_if_any();
+  }
+  const auto top = validate_params({top_params, std::size(top_params)}, root, file, "", diag);
+  if (top.contains("name") && top["name"].is_string()) c.name = top["name"].get<std::string>();
+  const auto design = validate_params({design_params, std::size(design_params)}, root["design"], file, "design", diag);
+  if (design.contains("levels") && design["levels"].is_number()) c.levels = design["levels"].get<int>();
+
+  const std::vector<SceneLaw> laws = read_bulk_tests(root, root["tests"], file, c, registry, diag);
+  if (!laws.empty()) c.law = laws.front().plugin->descriptor->name;
+  read_parameter_ranges(root, root["parameters"], laws, file, c, diag);
+  read_surrogate(root, root["model"], file, c, registry, diag);
   diag.throw_if_any();
   return c;
 }

@@ -1,5 +1,5 @@
 // The default executor: the cases run here, in a pool of --jobs threads, each case with its share of
-// the machine's cores. Cases that share a settled heap order themselves in case_runner.cpp (one
+// the machine's cores. Cases that share a settled heap order themselves in heap_cache.cpp (one
 // settles it, the others wait and reuse it), so the pool hands out cases in design order.
 // A failed case stops the hand-out; the running cases finish and are recorded, then the first
 // failure is thrown. After SIGINT/SIGTERM no case starts; the running ones save their checkpoints.

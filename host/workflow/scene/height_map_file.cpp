@@ -66,20 +66,32 @@ Axis axis_of(std::vector<double> v) {
 
 std::string mm(double v) { return fmt::format("{:.6g} mm", v * 1e3); }
 
-}  // namespace
+// The column of each wanted name: its index and its unit as the header gives it.
+using HeightColumns = std::map<std::string, std::pair<std::size_t, std::string>>;
 
-std::optional<scene::HeightField> parse_height_map(const std::string &text, const std::filesystem::path &csv,
-                                                   const std::string &key, Diagnostics &diag) {
-  const std::string path = csv.string();
-  analysis::Table table;
-  try {
-    table = analysis::Table::parse_csv(without_comments(text), path);
-  } catch (const std::exception &e) {
-    diag.error(fmt::format("error: {}: {}\n  {}", e.what(), key, file_shape));
-    return std::nullopt;
+// Refusals of rows or points, the first errors_shown of them reported in full.
+struct Refusals {
+  Diagnostics &diag;
+  const std::string &key;
+  std::size_t count = 0;
+
+  void operator()(const Location &at, const std::string &what, const std::string &fix) {
+    if (++count <= errors_shown) diag.error(at, key, what, fix);
   }
-  // the columns: x, y, height, each once, with a unit the parser knows
-  std::map<std::string, std::pair<std::size_t, std::string>> column;  // name -> index, unit
+  // False (with a count of those not shown) when any were refused.
+  bool none(const std::string &path, const char *what) const {
+    if (count == 0) return true;
+    if (count > errors_shown)
+      diag.error(fmt::format("error: {}: {} more {} refused", path, count - errors_shown, what));
+    return false;
+  }
+};
+
+// The columns x, y, height, each once, with a unit the parser knows, and a count of rows a grid can
+// have; nullopt (reported) otherwise.
+std::optional<HeightColumns> height_columns(const analysis::Table &table, const std::string &path,
+                                            const std::string &key, Diagnostics &diag) {
+  HeightColumns column;
   bool ok = true;
   for (std::size_t c = 0; c < table.cols(); ++c) {
     const auto [name, unit] = column_name_and_unit(table.columns()[c]);
@@ -111,12 +123,13 @@ std::optional<scene::HeightField> parse_height_map(const std::string &text, cons
     ok = false;
   }
   if (!ok) return std::nullopt;
+  return column;
+}
 
+// Each row's point in metres; a row without lengths, or with a height beyond max_height, is refused.
+std::vector<Point> height_points(const analysis::Table &table, const HeightColumns &column, const std::string &path,
+                                 Refusals &refuse) {
   std::vector<Point> points;
-  std::size_t bad = 0;
-  auto refuse = [&](const Location &at, const std::string &what, const std::string &fix) {
-    if (++bad <= errors_shown) diag.error(at, key, what, fix);
-  };
   for (std::size_t r = 0; r < table.rows(); ++r) {
     const Location at{path, static_cast<int>(table.line(r)), 0};
     double v[3];
@@ -139,20 +152,13 @@ std::optional<scene::HeightField> parse_height_map(const std::string &text, cons
     }
     points.push_back({v[0], v[1], v[2], at.line});
   }
-  if (bad > 0) {
-    if (bad > errors_shown) diag.error(fmt::format("error: {}: {} more rows refused", path, bad - errors_shown));
-    return std::nullopt;
-  }
+  return points;
+}
 
-  std::vector<double> xs, ys;
-  for (const auto &p : points) xs.push_back(p.x), ys.push_back(p.y);
-  const Axis ax = axis_of(xs), ay = axis_of(ys);
-  if (ax.n < 2 || ay.n < 2) {
-    diag.error(Location{path}, key,
-               fmt::format("the points span {} x {} distinct positions; a grid needs at least 2 x 2", ax.n, ay.n),
-               file_shape);
-    return std::nullopt;
-  }
+// The points placed on the grid of the axes; a point off the grid or given twice, or a grid point
+// missing, is refused.
+scene::HeightField grid_of_points(const std::vector<Point> &points, const Axis &ax, const Axis &ay,
+                                  const std::string &path, Refusals &refuse) {
   scene::HeightField map{ax.n, ay.n, ax.spacing, ay.spacing, std::vector<double>(ax.n * ay.n)};
   std::vector<int> line_of(map.h.size(), 0);
   for (const auto &p : points) {
@@ -174,7 +180,7 @@ std::optional<scene::HeightField> parse_height_map(const std::string &text, cons
     line_of[at] = p.line;
     map.h[at] = p.h;
   }
-  if (bad == 0 && points.size() < map.h.size()) {
+  if (refuse.count == 0 && points.size() < map.h.size()) {
     const auto hole = std::find(line_of.begin(), line_of.end(), 0) - line_of.begin();
     const std::size_t ix = std::size_t(hole) % ax.n, iy = std::size_t(hole) / ax.n;
     refuse(
@@ -183,10 +189,39 @@ std::optional<scene::HeightField> parse_height_map(const std::string &text, cons
                     ax.n, ay.n, mm(ax.first + double(ix) * ax.spacing), mm(ay.first + double(iy) * ay.spacing)),
         "give a height at every grid point");
   }
-  if (bad > 0) {
-    if (bad > errors_shown) diag.error(fmt::format("error: {}: {} more points refused", path, bad - errors_shown));
+  return map;
+}
+
+}  // namespace
+
+std::optional<scene::HeightField> parse_height_map(const std::string &text, const std::filesystem::path &csv,
+                                                   const std::string &key, Diagnostics &diag) {
+  const std::string path = csv.string();
+  analysis::Table table;
+  try {
+    table = analysis::Table::parse_csv(without_comments(text), path);
+  } catch (const std::exception &e) {
+    diag.error(fmt::format("error: {}: {}\n  {}", e.what(), key, file_shape));
     return std::nullopt;
   }
+  const std::optional<HeightColumns> column = height_columns(table, path, key, diag);
+  if (!column) return std::nullopt;
+
+  Refusals refuse{diag, key};
+  const std::vector<Point> points = height_points(table, *column, path, refuse);
+  if (!refuse.none(path, "rows")) return std::nullopt;
+
+  std::vector<double> xs, ys;
+  for (const auto &p : points) xs.push_back(p.x), ys.push_back(p.y);
+  const Axis ax = axis_of(xs), ay = axis_of(ys);
+  if (ax.n < 2 || ay.n < 2) {
+    diag.error(Location{path}, key,
+               fmt::format("the points span {} x {} distinct positions; a grid needs at least 2 x 2", ax.n, ay.n),
+               file_shape);
+    return std::nullopt;
+  }
+  scene::HeightField map = grid_of_points(points, ax, ay, path, refuse);
+  if (!refuse.none(path, "points")) return std::nullopt;
   return map;
 }
 

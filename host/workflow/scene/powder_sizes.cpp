@@ -67,73 +67,77 @@ SizeDistribution size_distribution(const Powder &powder) {
   return SizeDistribution::monodisperse(powder.diameter);
 }
 
-std::vector<std::string> check_powder_sizes(const Powder &powder, const YAML::Node &user, const std::string &file,
-                                            Diagnostics &diag) {
-  const bool has_user = user && user.IsMap();
-  auto written = [&](const std::string &key) { return has_user && user[key]; };
-  auto at = [&](const std::string &key) { return Location::of(file, written(key) ? user[key] : user); };
-  auto path = [](const std::string &key) { return "scene.powder." + key; };
-  const std::size_t errors_before = diag.errors().size();
+namespace {
+
+// The size keys as the user wrote them in scene.powder: whether each is written, where, its key path.
+struct WrittenSizes {
+  const YAML::Node &user;
+  const std::string &file;
+  bool has_user = user && user.IsMap();
+
+  bool written(const std::string &key) const { return has_user && user[key]; }
+  Location at(const std::string &key) const { return Location::of(file, written(key) ? user[key] : user); }
+  static std::string path(const std::string &key) { return "scene.powder." + key; }
+};
+
+// A size key written for another distribution than the powder's.
+void report_foreign_size_keys(const Powder &powder, const WrittenSizes &w, Diagnostics &diag) {
   const std::string &kind = powder.distribution;
   const auto &mine = keys_of.at(kind);
-
   for (const auto &key : size_keys)
-    if (written(key) && std::find(mine.begin(), mine.end(), key) == mine.end())
+    if (w.written(key) && std::find(mine.begin(), mine.end(), key) == mine.end())
       diag.error(
-          at(key), path(key), fmt::format("{} does not apply to distribution: {}", key, kind),
+          w.at(key), w.path(key), fmt::format("{} does not apply to distribution: {}", key, kind),
           fmt::format("distribution: {} takes {}{}", kind, join(mine),
                       kind == "mono" ? "; set distribution: lognormal, normal or table for a size distribution" : ""));
+}
 
-  if (kind == "lognormal" || kind == "normal") {
-    const char *width = kind == "lognormal" ? "sigma" : "standard_deviation";
-    if (by_quantiles(powder)) {
-      for (const auto &[key, value] : {std::pair{"d10", powder.d10}, std::pair{"d90", powder.d90}})
-        if (!(value > 0))
-          diag.error(at(key), path(key), "missing: d10, d50 and d90 go together",
-                     "give all three (the diameters below which 10, 50 and 90 % of the powder lie)");
-      if (!written("d50"))
-        diag.error(at("d50"), path("d50"), "missing: d10 and d90 need d50 too",
-                   "give all three (the diameters below which 10, 50 and 90 % of the powder lie)");
-      if (written(width))
-        diag.error(at(width), path(width), fmt::format("give {} or d10 and d90, not both", width),
-                   fmt::format("the three quantiles determine the {}'s width", kind));
-      const std::string order_hint = fmt::format(
-          "D10 < D50 < D90: the diameters below which 10, 50 and 90 % of the powder (by {}) lie; check the order "
-          "and the units",
-          powder.basis);
-      const bool d50_given = written("d50");  // else d50 is the default 250 um: the error above says so
-      if (d50_given && powder.d10 > 0 && !(powder.d10 < powder.d50))
-        diag.error(at("d10"), path("d10"),
-                   fmt::format("D10 = {} um is not below D50 = {} um", um(powder.d10), um(powder.d50)), order_hint);
-      if (d50_given && powder.d90 > 0 && !(powder.d50 < powder.d90))
-        diag.error(at("d90"), path("d90"),
-                   fmt::format("D90 = {} um is not above D50 = {} um", um(powder.d90), um(powder.d50)), order_hint);
-    } else if (kind == "normal" && !(powder.standard_deviation > 0)) {
-      diag.error(at("standard_deviation"), path("standard_deviation"), "a normal distribution needs a width",
-                 "give standard_deviation (with d50, the mean), or d10, d50 and d90");
-    }
-    if (powder.d_min > 0 && powder.d_max > 0 && !(powder.d_min < powder.d_max))
-      diag.error(
-          at("d_min"), path("d_min"),
-          fmt::format("the truncation [d_min, d_max] = [{}, {}] um is empty", um(powder.d_min), um(powder.d_max)),
-          "d_min is the smallest diameter kept, d_max the largest");
-  }
-  if (kind == "table" && !written("table"))
-    diag.error(at("table"), path("table"), "distribution: table needs the table",
-               "give table: [{diameter: 20 um, fraction: 0.3}, ...], rows {from, to, fraction}, or a CSV file");
-  if (diag.errors().size() != errors_before || (kind == "table" && !powder.table.is_array())) return {};
+// A lognormal or normal distribution given by its quantiles: all three, in order, and no width beside them.
+void check_size_quantiles(const Powder &powder, const WrittenSizes &w, Diagnostics &diag) {
+  const std::string &kind = powder.distribution;
+  const char *width = kind == "lognormal" ? "sigma" : "standard_deviation";
+  for (const auto &[key, value] : {std::pair{"d10", powder.d10}, std::pair{"d90", powder.d90}})
+    if (!(value > 0))
+      diag.error(w.at(key), w.path(key), "missing: d10, d50 and d90 go together",
+                 "give all three (the diameters below which 10, 50 and 90 % of the powder lie)");
+  if (!w.written("d50"))
+    diag.error(w.at("d50"), w.path("d50"), "missing: d10 and d90 need d50 too",
+               "give all three (the diameters below which 10, 50 and 90 % of the powder lie)");
+  if (w.written(width))
+    diag.error(w.at(width), w.path(width), fmt::format("give {} or d10 and d90, not both", width),
+               fmt::format("the three quantiles determine the {}'s width", kind));
+  const std::string order_hint = fmt::format(
+      "D10 < D50 < D90: the diameters below which 10, 50 and 90 % of the powder (by {}) lie; check the order "
+      "and the units",
+      powder.basis);
+  const bool d50_given = w.written("d50");  // else d50 is the default 250 um: the error above says so
+  if (d50_given && powder.d10 > 0 && !(powder.d10 < powder.d50))
+    diag.error(w.at("d10"), w.path("d10"),
+               fmt::format("D10 = {} um is not below D50 = {} um", um(powder.d10), um(powder.d50)), order_hint);
+  if (d50_given && powder.d90 > 0 && !(powder.d50 < powder.d90))
+    diag.error(w.at("d90"), w.path("d90"),
+               fmt::format("D90 = {} um is not above D50 = {} um", um(powder.d90), um(powder.d50)), order_hint);
+}
 
-  SizeDistribution sizes;
-  try {
-    sizes = size_distribution(powder);
-    sizes.validate();
-  } catch (const std::exception &e) {
-    diag.error(at("distribution"), "scene.powder", e.what(),
-               fmt::format("distribution: {} takes {}", kind, join(mine)));
-    return {};
+// A lognormal or normal distribution: its quantiles or its width, and a truncation that is not empty.
+void check_size_spread(const Powder &powder, const WrittenSizes &w, Diagnostics &diag) {
+  if (by_quantiles(powder)) {
+    check_size_quantiles(powder, w, diag);
+  } else if (powder.distribution == "normal" && !(powder.standard_deviation > 0)) {
+    diag.error(w.at("standard_deviation"), w.path("standard_deviation"), "a normal distribution needs a width",
+               "give standard_deviation (with d50, the mean), or d10, d50 and d90");
   }
-  if (!by_quantiles(powder)) return {};
-  // What the heap will sample, against what was asked.
+  if (powder.d_min > 0 && powder.d_max > 0 && !(powder.d_min < powder.d_max))
+    diag.error(w.at("d_min"), w.path("d_min"),
+               fmt::format("the truncation [d_min, d_max] = [{}, {}] um is empty", um(powder.d_min), um(powder.d_max)),
+               "d_min is the smallest diameter kept, d_max the largest");
+}
+
+// What the heap will sample, against the quantiles asked: a warning when they are off by more than
+// the tolerance, saying whether the family or the truncation is to blame.
+std::vector<std::string> quantile_misfit_warning(const Powder &powder, const SizeDistribution &sizes,
+                                                 const std::string &file) {
+  const std::string &kind = powder.distribution;
   const FractionBasis basis = basis_of(powder);
   const double given[3] = {powder.d10, powder.d50, powder.d90};
   double sampled[3], worst = 0;
@@ -162,6 +166,34 @@ std::vector<std::string> check_powder_sizes(const Powder &powder, const YAML::No
       fmt::format("{}: scene.powder: the truncation to [{}, {}] um moves {} to {}; widen d_min/d_max, or "
                   "leave them 0 for the default",
                   file, um(sizes.lower()), um(sizes.upper()), asked, gets)};
+}
+
+}  // namespace
+
+std::vector<std::string> check_powder_sizes(const Powder &powder, const YAML::Node &user, const std::string &file,
+                                            Diagnostics &diag) {
+  const WrittenSizes w{user, file};
+  const std::size_t errors_before = diag.errors().size();
+  const std::string &kind = powder.distribution;
+  const auto &mine = keys_of.at(kind);
+  report_foreign_size_keys(powder, w, diag);
+  if (kind == "lognormal" || kind == "normal") check_size_spread(powder, w, diag);
+  if (kind == "table" && !w.written("table"))
+    diag.error(w.at("table"), w.path("table"), "distribution: table needs the table",
+               "give table: [{diameter: 20 um, fraction: 0.3}, ...], rows {from, to, fraction}, or a CSV file");
+  if (diag.errors().size() != errors_before || (kind == "table" && !powder.table.is_array())) return {};
+
+  SizeDistribution sizes;
+  try {
+    sizes = size_distribution(powder);
+    sizes.validate();
+  } catch (const std::exception &e) {
+    diag.error(w.at("distribution"), "scene.powder", e.what(),
+               fmt::format("distribution: {} takes {}", kind, join(mine)));
+    return {};
+  }
+  if (!by_quantiles(powder)) return {};
+  return quantile_misfit_warning(powder, sizes, file);
 }
 
 }  // namespace spreadmap

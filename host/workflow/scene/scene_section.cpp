@@ -228,19 +228,8 @@ void check_powder(const Scene &scene, const YAML::Node &powder, const std::strin
   for (const auto &w : warnings) spdlog::warn("{}", w);
 }
 
-}  // namespace
-
-const char *preset_text(const std::string &preset) {
-  if (preset == "standard") return presets::standard;
-  if (preset == "paper") return presets::paper;
-  if (preset == "paper_full") return presets::paper_full;
-  return presets::quick;
-}
-
-std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagnostics &diag) {
-  const std::string &file = wf.scene_file;
-  const YAML::Node &user = wf.scene;
-  nlohmann::json scene = nlohmann::json::object();
+// A top-level key the scene does not know, named with the nearest known one.
+void report_unknown_scene_keys(const YAML::Node &user, const std::string &file, Diagnostics &diag) {
   for (const auto &kv : user) {
     const std::string key = kv.first.as<std::string>();
     if (std::find(scene_keys.begin(), scene_keys.end(), key) == scene_keys.end()) {
@@ -249,99 +238,117 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
                  (near.empty() ? "" : "did you mean '" + near + "'? ") + "known: " + join(scene_keys));
     }
   }
-  // top-level engine keys
+}
+
+// The top-level engine keys (preset, precision, backend, ...), checked by their schema.
+nlohmann::json read_engine_keys(const YAML::Node &user, const std::string &file, Diagnostics &diag) {
   YAML::Node top(YAML::NodeType::Map);
   for (const auto &kv : user)
     if (SchemaView{engine_params, std::size(engine_params)}.find(kv.first.as<std::string>())) top[kv.first] = kv.second;
-  auto engine = validate_params({engine_params, std::size(engine_params)}, top, file, "scene", diag);
-  scene.update(engine);
-  // an invalid preset was reported above; go on with quick to report the other problems too
-  const std::string preset =
-      engine.contains("preset") && engine["preset"].is_string() ? engine["preset"].get<std::string>() : "quick";
-  const YAML::Node p = YAML::Load(preset_text(preset));
+  return validate_params({engine_params, std::size(engine_params)}, top, file, "scene", diag);
+}
 
+// The host's own sections (domain, powder, time, layers): the preset's values, the user's over them.
+void read_host_sections(const YAML::Node &preset, const YAML::Node &user, const std::string &file,
+                        nlohmann::json &scene, Diagnostics &diag) {
   for (const auto &s : host_sections) {
-    const YAML::Node preset_section = p[s.name] ? p[s.name] : YAML::Node(YAML::NodeType::Map);  // layers: none
+    const YAML::Node preset_section =
+        preset[s.name] ? preset[s.name] : YAML::Node(YAML::NodeType::Map);  // layers: none
     scene[s.name] =
         validate_split({s.params, s.n}, preset_section, user[s.name], file, std::string("scene.") + s.name, diag);
   }
-  const YAML::Node powder = user["powder"] && user["powder"].IsMap() ? user["powder"] : YAML::Node();
-  const fs::path scene_dir = fs::path(file).has_parent_path() ? fs::path(file).parent_path() : fs::path(".");
-  resolve_size_table(scene["powder"], powder["table"], file, scene_dir, diag);
+}
 
-  // contact law: particle-particle, then substrate and spreader overrides of the same law
-  const YAML::Node contact = overlay(p["contact"], user["contact"]);
-  const std::string law_name = contact["use"] ? contact["use"].as<std::string>() : "";
-  const LoadedPlugin *law = nullptr;
+// The plugin a section names with `use:` (scene.contact or scene.spreader); null when there is none
+// of that name (reported at the user's `use:`, or at the scene when the preset named it).
+const LoadedPlugin *section_plugin(PluginRegistry &registry, const char *section, const std::string &name,
+                                   const YAML::Node &user, const std::string &file, Diagnostics &diag) {
   try {
-    law = &registry.get("contact", law_name);
+    return &registry.get(section, name);
   } catch (const std::exception &e) {
-    diag.error(Location::of(file, user["contact"] && user["contact"]["use"] ? user["contact"]["use"] : user),
-               "scene.contact.use", without_error_prefix(e.what()));
+    diag.error(Location::of(file, user[section] && user[section]["use"] ? user[section]["use"] : user),
+               std::string("scene.") + section + ".use", without_error_prefix(e.what()));
   }
-  const YAML::Node spreader = overlay(p["spreader"], user["spreader"]);
-  const std::string geo_name = spreader["use"] ? spreader["use"].as<std::string>() : "";
-  const LoadedPlugin *geo = nullptr;
-  try {
-    geo = &registry.get("spreader", geo_name);
-  } catch (const std::exception &e) {
-    diag.error(Location::of(file, user["spreader"] && user["spreader"]["use"] ? user["spreader"]["use"] : user),
-               "scene.spreader.use", without_error_prefix(e.what()));
+  return nullptr;
+}
+
+// The plugin's name a section's `use:` gives, the user's over the preset's.
+std::string section_use(const YAML::Node &preset, const YAML::Node &user, const char *section) {
+  const YAML::Node merged = overlay(preset[section], user[section]);
+  return merged["use"] ? merged["use"].as<std::string>() : "";
+}
+
+// scene.contact: the particle-particle law's values; returns them (the other laws inherit them).
+nlohmann::json read_contact_section(const LoadedPlugin &law, const std::string &law_name, const YAML::Node &preset,
+                                    const YAML::Node &user, const std::string &file, nlohmann::json &scene,
+                                    Diagnostics &diag) {
+  const auto schema = SchemaView::of(*law.descriptor);
+  auto pp = validate_split(schema, known_only(preset["contact"], schema), user["contact"], file, "scene.contact", diag,
+                           {"use"});
+  scene["contact"] = {{"use", law_name}, {"params", pp}};
+  return pp;
+}
+
+// scene.substrate: the contact law's values with the substrate's overrides (law keys only), and its
+// surface: the flat plate, a rough one or a measured height map.
+void read_substrate_section(const LoadedPlugin &law, const nlohmann::json &pp, const YAML::Node &preset,
+                            const YAML::Node &user, const std::string &file, const fs::path &scene_dir,
+                            nlohmann::json &scene, Diagnostics &diag) {
+  const auto schema = SchemaView::of(*law.descriptor);
+  auto sub =
+      validate_params(schema, known_only(preset["substrate"], schema), "<preset>", "scene.substrate", diag, {}, false);
+  const YAML::Node user_substrate = user["substrate"];
+  if (user_substrate) {
+    auto mine =
+        validate_params(schema, user_substrate, file, "scene.substrate", diag, {"roughness", "height_map"}, false);
+    for (auto &[k, v] : mine.items()) sub[k] = v;
   }
-  if (law) {
-    const auto schema = SchemaView::of(*law->descriptor);
-    auto pp =
-        validate_split(schema, known_only(p["contact"], schema), user["contact"], file, "scene.contact", diag, {"use"});
-    scene["contact"] = {{"use", law_name}, {"params", pp}};
-    // substrate: law keys only
-    auto sub =
-        validate_params(schema, known_only(p["substrate"], schema), "<preset>", "scene.substrate", diag, {}, false);
-    const YAML::Node user_substrate = user["substrate"];
-    if (user_substrate) {
-      auto mine =
-          validate_params(schema, user_substrate, file, "scene.substrate", diag, {"roughness", "height_map"}, false);
-      for (auto &[k, v] : mine.items()) sub[k] = v;
-    }
-    nlohmann::json sub_law = pp;
-    for (auto &[k, v] : sub.items()) sub_law[k] = v;
-    scene["substrate"] = {{"law", sub_law}};
-    const bool substrate_map = user_substrate && user_substrate.IsMap();  // neither key: the flat plate
-    if (substrate_map && user_substrate["roughness"] && user_substrate["height_map"])
-      diag.error(Location::of(file, user_substrate["height_map"]), "scene.substrate.height_map",
-                 "a substrate is either rough (roughness: a random surface) or measured (height_map), not both",
-                 "remove roughness or height_map");
-    else if (substrate_map && user_substrate["roughness"])
-      scene["substrate"]["roughness"] =
-          validate_params({roughness_params, std::size(roughness_params)}, user_substrate["roughness"], file,
-                          "scene.substrate.roughness", diag);
-    else if (substrate_map && user_substrate["height_map"])
-      scene["substrate"]["height_map"] = resolve_height_map(user_substrate["height_map"], file, scene_dir, diag);
-    if (geo) {
-      // spreader section: geometry keys go to the geometry, law keys to the particle-spreader law
-      const auto gschema = SchemaView::of(*geo->descriptor);
-      std::set<std::string> law_keys;
-      for (std::size_t i = 0; i < schema.n; ++i) law_keys.insert(schema.params[i].name);
-      auto gvals = validate_split(gschema, known_only(p["spreader"], gschema, schema), user["spreader"], file,
-                                  "scene.spreader", diag, [&] {
-                                    auto k = law_keys;
-                                    k.insert("use");
-                                    return k;
-                                  }());
-      // law keys only: a key neither plugin knows was reported once, by the geometry above
-      nlohmann::json spr_law = pp;
-      auto lp =
-          validate_params(schema, known_only(p["spreader"], schema), "<preset>", "scene.spreader", diag, {}, false);
-      for (auto &[k, v] : lp.items()) spr_law[k] = v;
-      if (user["spreader"] && user["spreader"].IsMap()) {
-        auto mine =
-            validate_params(schema, known_only(user["spreader"], schema), file, "scene.spreader", diag, {}, false);
-        for (auto &[k, v] : mine.items()) spr_law[k] = v;
-      }
-      scene["spreader"] = {{"use", geo_name}, {"params", gvals}, {"law", spr_law}};
-    }
+  nlohmann::json sub_law = pp;
+  for (auto &[k, v] : sub.items()) sub_law[k] = v;
+  scene["substrate"] = {{"law", sub_law}};
+  const bool substrate_map = user_substrate && user_substrate.IsMap();  // neither key: the flat plate
+  if (substrate_map && user_substrate["roughness"] && user_substrate["height_map"])
+    diag.error(Location::of(file, user_substrate["height_map"]), "scene.substrate.height_map",
+               "a substrate is either rough (roughness: a random surface) or measured (height_map), not both",
+               "remove roughness or height_map");
+  else if (substrate_map && user_substrate["roughness"])
+    scene["substrate"]["roughness"] =
+        validate_params({roughness_params, std::size(roughness_params)}, user_substrate["roughness"], file,
+                        "scene.substrate.roughness", diag);
+  else if (substrate_map && user_substrate["height_map"])
+    scene["substrate"]["height_map"] = resolve_height_map(user_substrate["height_map"], file, scene_dir, diag);
+}
+
+// scene.spreader: geometry keys go to the geometry, law keys to the particle-spreader law (the
+// contact law's values with the spreader's overrides).
+void read_spreader_section(const LoadedPlugin &law, const LoadedPlugin &geo, const std::string &geo_name,
+                           const nlohmann::json &pp, const YAML::Node &preset, const YAML::Node &user,
+                           const std::string &file, nlohmann::json &scene, Diagnostics &diag) {
+  const auto schema = SchemaView::of(*law.descriptor);
+  const auto gschema = SchemaView::of(*geo.descriptor);
+  std::set<std::string> law_keys;
+  for (std::size_t i = 0; i < schema.n; ++i) law_keys.insert(schema.params[i].name);
+  auto gvals = validate_split(gschema, known_only(preset["spreader"], gschema, schema), user["spreader"], file,
+                              "scene.spreader", diag, [&] {
+                                auto k = law_keys;
+                                k.insert("use");
+                                return k;
+                              }());
+  // law keys only: a key neither plugin knows was reported once, by the geometry above
+  nlohmann::json spr_law = pp;
+  auto lp =
+      validate_params(schema, known_only(preset["spreader"], schema), "<preset>", "scene.spreader", diag, {}, false);
+  for (auto &[k, v] : lp.items()) spr_law[k] = v;
+  if (user["spreader"] && user["spreader"].IsMap()) {
+    auto mine = validate_params(schema, known_only(user["spreader"], schema), file, "scene.spreader", diag, {}, false);
+    for (auto &[k, v] : mine.items()) spr_law[k] = v;
   }
-  check_consistency(scene, user, file, diag);
-  if (diag.empty() && law && geo) probe_plugins(scene, *law, *geo, user, file, diag);
+  scene["spreader"] = {{"use", geo_name}, {"params", gvals}, {"law", spr_law}};
+}
+
+// The scene typed, then the checks that need it whole (each once the ones before it pass).
+std::optional<Scene> typed_and_checked(const nlohmann::json &scene, const YAML::Node &powder, const YAML::Node &user,
+                                       const std::string &file, PluginRegistry &registry, Diagnostics &diag) {
   std::optional<Scene> typed;
   try {
     typed = scene_from_json(scene, file);
@@ -355,6 +362,47 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
   if (diag.empty()) check_cohesion(*typed, user, file, registry, diag);
   if (diag.empty()) check_spreader_span(*typed, user, file, registry, diag);
   return typed;
+}
+
+}  // namespace
+
+const char *preset_text(const std::string &preset) {
+  if (preset == "standard") return presets::standard;
+  if (preset == "paper") return presets::paper;
+  if (preset == "paper_full") return presets::paper_full;
+  return presets::quick;
+}
+
+std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry, Diagnostics &diag) {
+  const std::string &file = wf.scene_file;
+  const YAML::Node &user = wf.scene;
+  nlohmann::json scene = nlohmann::json::object();
+  report_unknown_scene_keys(user, file, diag);
+  const nlohmann::json engine = read_engine_keys(user, file, diag);
+  scene.update(engine);
+  // an invalid preset was reported above; go on with quick to report the other problems too
+  const std::string preset =
+      engine.contains("preset") && engine["preset"].is_string() ? engine["preset"].get<std::string>() : "quick";
+  const YAML::Node p = YAML::Load(preset_text(preset));
+
+  read_host_sections(p, user, file, scene, diag);
+  const YAML::Node powder = user["powder"] && user["powder"].IsMap() ? user["powder"] : YAML::Node();
+  const fs::path scene_dir = fs::path(file).has_parent_path() ? fs::path(file).parent_path() : fs::path(".");
+  resolve_size_table(scene["powder"], powder["table"], file, scene_dir, diag);
+
+  // contact law: particle-particle, then substrate and spreader overrides of the same law
+  const std::string law_name = section_use(p, user, "contact");
+  const LoadedPlugin *law = section_plugin(registry, "contact", law_name, user, file, diag);
+  const std::string geo_name = section_use(p, user, "spreader");
+  const LoadedPlugin *geo = section_plugin(registry, "spreader", geo_name, user, file, diag);
+  if (law) {
+    const nlohmann::json pp = read_contact_section(*law, law_name, p, user, file, scene, diag);
+    read_substrate_section(*law, pp, p, user, file, scene_dir, scene, diag);
+    if (geo) read_spreader_section(*law, *geo, geo_name, pp, p, user, file, scene, diag);
+  }
+  check_consistency(scene, user, file, diag);
+  if (diag.empty() && law && geo) probe_plugins(scene, *law, *geo, user, file, diag);
+  return typed_and_checked(scene, powder, user, file, registry, diag);
 }
 
 bool find_scene_key(const Scene &scene, PluginRegistry &registry, const std::string &name, SceneKey &out,

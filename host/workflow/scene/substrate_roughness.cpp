@@ -62,24 +62,23 @@ double substrate_level(const Scene &scene) {
   return substrate ? substrate->mean_top : 0.0;
 }
 
-void check_roughness(const Scene &given, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
-                     Diagnostics &diag) {
-  if (!has_substrate_spheres(given)) return;
-  const bool measured = given.substrate.height_map.has_value();
-  const char *const name = measured ? "height_map" : "roughness";
-  const YAML::Node section = user["substrate"][name];
-  auto where = [&](const char *key) {
-    if (section.IsMap() && section[key]) return Location::of(file, section[key]);
-    return Location::of(file, section);
-  };
-  const std::string key = std::string("scene.substrate.") + name;
-  if (given.backend == "cuda") {
-    diag.error(Location::of(file, user["backend"] ? user["backend"] : section), "scene.backend",
-               "backend: cuda cannot run a substrate of spheres: they are fixed particles, which step on the CPU only",
-               fmt::format("set backend: auto or cpu, or remove substrate.{}", name));
-    return;
+namespace {
+
+// The user's substrate section (roughness or height_map): where a key of it was written, and its key path.
+struct SubstrateSection {
+  YAML::Node node;
+  const std::string &file;
+  std::string key;
+
+  Location where(const char *k) const {
+    if (node.IsMap() && node[k]) return Location::of(file, node[k]);
+    return Location::of(file, node);
   }
-  const Scene scene = coarse_grained(given, registry);  // the sizes the engine runs
+};
+
+// The lattice fits the domain: spheres smaller than it, a correlation length the lattice can carry and
+// the domain can hold, and not too many spheres. False when one of these is reported.
+bool substrate_lattice_fits(const Scene &scene, bool measured, const SubstrateSection &section, Diagnostics &diag) {
   const Domain &domain = scene.domain;
   const double d = substrate_sphere_diameter(scene);
   const bool given_diameter =
@@ -87,47 +86,47 @@ void check_roughness(const Scene &given, const YAML::Node &user, const std::stri
   const std::string diameter =
       given_diameter ? fmt::format("{:g} um", d * 1e6) : fmt::format("{:g} um (the powder's D50 by volume)", d * 1e6);
   if (d > domain.length || d > domain.width) {
-    diag.error(where("sphere_diameter"), key + ".sphere_diameter",
+    diag.error(section.where("sphere_diameter"), section.key + ".sphere_diameter",
                fmt::format("the sphere diameter {} does not fit the domain ({:g} x {:g} mm)", diameter,
                            domain.length * 1e3, domain.width * 1e3),
                fmt::format("give sphere_diameter <= {:g} um", std::min(domain.length, domain.width) * 1e6));
-    return;
+    return false;
   }
   const double xi = measured ? 0.0 : scene.substrate.roughness->correlation_length;
   if (!measured && xi < 2 * d) {
-    diag.error(where("correlation_length"), key + ".correlation_length",
+    diag.error(section.where("correlation_length"), section.key + ".correlation_length",
                fmt::format("{:g} um is below 2 sphere diameters (2 x {}): the lattice of spheres cannot carry it",
                            xi * 1e6, diameter),
                fmt::format("give correlation_length >= {:g} um, or a smaller sphere_diameter", 2 * d * 1e6));
-    return;
+    return false;
   }
   if (!measured && xi > domain.length) {
-    diag.error(where("correlation_length"), key + ".correlation_length",
+    diag.error(section.where("correlation_length"), section.key + ".correlation_length",
                fmt::format("{:g} mm is longer than the domain ({:g} mm): the surface would be one slope", xi * 1e3,
                            domain.length * 1e3),
                fmt::format("give correlation_length <= {:g} mm", domain.length * 1e3));
-    return;
+    return false;
   }
   const double spheres = std::floor(domain.length / d) * std::floor(domain.width / d);
   if (spheres > max_substrate_spheres) {
-    diag.error(where("sphere_diameter"), key + ".sphere_diameter",
+    diag.error(section.where("sphere_diameter"), section.key + ".sphere_diameter",
                fmt::format("spheres of {} make a substrate of {:.3g} fixed spheres, more than {:g}", diameter, spheres,
                            max_substrate_spheres),
                "give a larger sphere_diameter or make the domain smaller");
-    return;
+    return false;
   }
-  scene::RoughSubstrate substrate;
-  try {
-    substrate = *rough_substrate_of(scene);
-  } catch (const std::invalid_argument &e) {
-    diag.error(where("correlation_length"), key, e.what(),
-               "give a longer correlation_length or a smaller sphere_diameter");
-    return;
-  }
+  return true;
+}
+
+// Room above the substrate: its peaks below the spreader's gap, and the further layers and the heap
+// fed on top within the domain's height.
+void check_room_above_substrate(const Scene &scene, const scene::RoughSubstrate &substrate, bool measured,
+                                const char *name, const SubstrateSection &section, Diagnostics &diag) {
+  const Domain &domain = scene.domain;
   const double peak = highest_top(substrate), above_mean = peak - substrate.mean_top;
   const auto &gap = scene.spreader.params.contains("gap") ? scene.spreader.params["gap"] : nlohmann::json();
   if (!gap.is_number()) {
-    diag.error(where("rq"), key,
+    diag.error(section.where("rq"), section.key,
                fmt::format("the spreader '{}' has no gap to hold above the substrate's mean plane", scene.spreader.use),
                fmt::format("use a spreader plugin with a gap parameter (spreadmap plugins spreader lists them) or "
                            "remove substrate.{}",
@@ -135,7 +134,7 @@ void check_roughness(const Scene &given, const YAML::Node &user, const std::stri
     return;
   }
   if (above_mean >= gap.get<double>())
-    diag.error(where(measured ? "file" : "rq"), key + (measured ? ".file" : ".rq"),
+    diag.error(section.where(measured ? "file" : "rq"), section.key + (measured ? ".file" : ".rq"),
                fmt::format("the substrate's highest sphere reaches {:.3g} um above its mean plane, not below the "
                            "spreader's gap ({:g} um): the spreader would strike the substrate",
                            above_mean * 1e6, gap.get<double>() * 1e6),
@@ -144,13 +143,40 @@ void check_roughness(const Scene &given, const YAML::Node &user, const std::stri
   const double later_layers = double(scene.layers.count - 1) * scene.layers.thickness;
   const double heap = estimated_heap_height(scene), needed = peak + later_layers + heap;
   if (needed > domain.height)
-    diag.error(where("rq"), key,
+    diag.error(section.where("rq"), section.key,
                fmt::format("the substrate's peaks ({:.3g} mm), {:.3g} mm of further layers and the heap fed on top "
                            "(about {:.3g} mm at a packing of {:g}) need {:.3g} mm, more than the domain's height "
                            "{:.3g} mm",
                            peak * 1e3, later_layers * 1e3, heap * 1e3, heap_packing_estimate, needed * 1e3,
                            domain.height * 1e3),
                fmt::format("make the domain taller (domain.height >= {:.3g} mm)", needed * 1e3));
+}
+
+}  // namespace
+
+void check_roughness(const Scene &given, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
+                     Diagnostics &diag) {
+  if (!has_substrate_spheres(given)) return;
+  const bool measured = given.substrate.height_map.has_value();
+  const char *const name = measured ? "height_map" : "roughness";
+  const SubstrateSection section{user["substrate"][name], file, std::string("scene.substrate.") + name};
+  if (given.backend == "cuda") {
+    diag.error(Location::of(file, user["backend"] ? user["backend"] : section.node), "scene.backend",
+               "backend: cuda cannot run a substrate of spheres: they are fixed particles, which step on the CPU only",
+               fmt::format("set backend: auto or cpu, or remove substrate.{}", name));
+    return;
+  }
+  const Scene scene = coarse_grained(given, registry);  // the sizes the engine runs
+  if (!substrate_lattice_fits(scene, measured, section, diag)) return;
+  scene::RoughSubstrate substrate;
+  try {
+    substrate = *rough_substrate_of(scene);
+  } catch (const std::invalid_argument &e) {
+    diag.error(section.where("correlation_length"), section.key, e.what(),
+               "give a longer correlation_length or a smaller sphere_diameter");
+    return;
+  }
+  check_room_above_substrate(scene, substrate, measured, name, section, diag);
 }
 
 }  // namespace spreadmap

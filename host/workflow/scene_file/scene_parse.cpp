@@ -313,6 +313,153 @@ std::string wall_label(const WallSpec &w, std::size_t k) {
   return w.name.empty() ? fmt::format("walls[{}] ({})", k, kinds[int(w.kind)]) : w.name;
 }
 
+// One wall's keys as written: those its type requires, and those of the other wall types (refused, so
+// that a typo in `type` is not silently another wall).
+struct WallKeys {
+  const Reader &r;
+  const YAML::Node &w;
+  const std::string &path;
+  const std::string &type;
+
+  bool need(const char *key, const char *what) const {
+    if (w[key]) return true;
+    r.diag.error(r.at(w), path + "." + key, fmt::format("required value missing for a {}", type), what);
+    return false;
+  }
+
+  void refuse_foreign(std::initializer_list<const char *> keys) const {
+    for (const char *key : keys)
+      if (w[key])
+        r.diag.error(
+            r.at(w[key]), path + "." + key, fmt::format("not a key of a {} wall", type),
+            "plane: point, normal; box: lo, hi, open_top; cylinder: base, axis, radius, height, inside, omega; "
+            "spreader: spreader (its motion is the plugin's)");
+  }
+};
+
+void read_spreader_wall(const WallKeys &keys, PluginRegistry &registry, const engine::Domain &domain, WallSpec &spec) {
+  keys.refuse_foreign(
+      {"point", "normal", "lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega", "velocity"});
+  read_spreader(keys.r, keys.w, keys.path, registry, domain, spec.spreader);
+  spec.spreader.time_offset = -spec.start;  // the plugin's time 0 (its start) at `start`, at rest before
+}
+
+void read_plane_wall(const WallKeys &keys, WallSpec &spec) {
+  const Reader &r = keys.r;
+  const YAML::Node &w = keys.w;
+  keys.refuse_foreign({"lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
+  if (keys.need("point", "add point: [x, y, z] (m), a point of the plane"))
+    if (auto p = r.vector(w["point"], keys.path + ".point", "m", "a point of the plane")) spec.point = *p;
+  if (keys.need("normal", "add normal: [nx, ny, nz], pointing to the particles' side"))
+    if (auto n = r.direction(w["normal"], keys.path + ".normal", "normal into the particles' side")) spec.normal = *n;
+}
+
+void read_box_wall(const WallKeys &keys, WallSpec &spec) {
+  const Reader &r = keys.r;
+  const YAML::Node &w = keys.w;
+  const std::string &path = keys.path;
+  keys.refuse_foreign({"point", "normal", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
+  std::optional<Vec> lo, hi;
+  if (keys.need("lo", "add lo: [x, y, z] (m)")) lo = r.vector(w["lo"], path + ".lo", "m", "lower corner");
+  if (keys.need("hi", "add hi: [x, y, z] (m)")) hi = r.vector(w["hi"], path + ".hi", "m", "upper corner");
+  if (lo && hi) {
+    spec.lo = *lo;
+    spec.hi = *hi;
+    for (int a = 0; a < 3; ++a)
+      if (!((*hi)[a] > (*lo)[a]))
+        r.diag.error(r.at(w["hi"]), path + ".hi",
+                     fmt::format("hi.{} is not above lo.{}: the box is empty", "xyz"[a], "xyz"[a]),
+                     "make hi greater than lo along every axis");
+  }
+}
+
+// `v`: the wall's host keys as validated (radius, height, inside and omega with their defaults).
+void read_cylinder_wall(const WallKeys &keys, const nlohmann::json &v, WallSpec &spec) {
+  const Reader &r = keys.r;
+  const YAML::Node &w = keys.w;
+  const std::string &path = keys.path;
+  keys.refuse_foreign({"point", "normal", "lo", "hi", "open_top", "spreader"});
+  CylinderWall &c = spec.cylinder;
+  c = CylinderWall{{0, 0, 0}, {0, 0, 1}, 0, 0, {0, 0, 0}, 0, 0, true};
+  if (keys.need("base", "add base: [x, y, z] (m), the centre of its bottom end"))
+    if (auto b = r.vector(w["base"], path + ".base", "m", "centre of the bottom end"))
+      std::copy(b->begin(), b->end(), c.base);
+  if (w["axis"])
+    if (auto a = r.direction(w["axis"], path + ".axis", "axis direction")) std::copy(a->begin(), a->end(), c.axis);
+  c.radius = v.contains("radius") && v["radius"].is_number() ? v["radius"].get<double>() : 0.0;
+  c.height = v.contains("height") && v["height"].is_number() ? v["height"].get<double>() : 0.0;
+  if (w["radius"] && v["radius"].is_number() && !(c.radius > 0))
+    r.diag.error(r.at(w["radius"]), path + ".radius", "a cylinder needs radius > 0");
+  if (w["height"] && v["height"].is_number() && !(c.height > 0))
+    r.diag.error(r.at(w["height"]), path + ".height", "a cylinder needs height > 0");
+  keys.need("radius", "add radius: R (m)");
+  keys.need("height", "add height: H (m), its length along the axis");
+  c.inside = v.contains("inside") && v["inside"].is_boolean() ? v["inside"].get<bool>() : true;
+  c.omega = v.contains("omega") && v["omega"].is_number() ? v["omega"].get<double>() : 0.0;
+  c.start = spec.start;
+  std::copy(spec.velocity.begin(), spec.velocity.end(), c.velocity);
+}
+
+// The wall's law: the particle-particle values with this wall's overrides (its keys of the law).
+nlohmann::json wall_law_with_overrides(const Reader &r, const YAML::Node &w, const std::string &path,
+                                       const LoadedPlugin *law, const std::set<std::string> &law_keys,
+                                       const nlohmann::json &pair_law) {
+  nlohmann::json out = pair_law;
+  if (law) {
+    YAML::Node own(YAML::NodeType::Map);
+    for (const auto &kv : w)
+      if (law_keys.count(kv.first.as<std::string>())) own[kv.first] = kv.second;
+    const auto mine = validate_params(SchemaView::of(*law->descriptor), own, r.file, path, r.diag, {}, false);
+    for (auto &[key, value] : mine.items()) out[key] = value;
+  }
+  return out;
+}
+
+// walls[k]: its host keys, the keys of its type, and its law; nullopt when it is no mapping or has no
+// valid type (reported).
+std::optional<WallSpec> read_wall(const Reader &r, const YAML::Node &w, std::size_t k, const LoadedPlugin *law,
+                                  const std::set<std::string> &law_keys, PluginRegistry &registry, const SceneFile &s) {
+  const std::string path = fmt::format("walls[{}]", k);
+  WallSpec spec;
+  spec.key_path = path;
+  spec.where = r.at(w);
+  if (!w.IsMap()) {
+    r.diag.error(r.at(w), path, "expected a mapping with type: plane, box or cylinder");
+    return std::nullopt;
+  }
+  // host keys here; the contact law's keys override the particle-particle law's values for this wall
+  const auto v = r.section(wall_params, std::size(wall_params), w, path, law_keys);
+  if (!v.contains("type") || !v["type"].is_string()) return std::nullopt;
+  const std::string type = v["type"];
+  spec.kind = type == "box"        ? WallKind::box
+              : type == "cylinder" ? WallKind::cylinder
+              : type == "spreader" ? WallKind::spreader
+                                   : WallKind::plane;
+  if (v.contains("name") && v["name"].is_string()) spec.name = v["name"];
+  if (v.contains("open_top") && v["open_top"].is_boolean()) spec.open_top = v["open_top"];
+  if (v.contains("start") && v["start"].is_number()) spec.start = v["start"];
+  if (w["velocity"])
+    if (auto vel = r.vector(w["velocity"], path + ".velocity", "m/s", "translation velocity")) spec.velocity = *vel;
+  const WallKeys keys{r, w, path, type};
+  switch (spec.kind) {
+    case WallKind::spreader:
+      read_spreader_wall(keys, registry, s.domain, spec);
+      break;
+    case WallKind::plane:
+      read_plane_wall(keys, spec);
+      break;
+    case WallKind::box:
+      read_box_wall(keys, spec);
+      break;
+    case WallKind::cylinder:
+      read_cylinder_wall(keys, v, spec);
+      break;
+  }
+  spec.law = wall_law_with_overrides(r, w, path, law, law_keys, s.pair_law);
+  spec.name = wall_label(spec, k);
+  return spec;
+}
+
 void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law, PluginRegistry &registry,
                 SceneFile &s) {
   if (!node) return;
@@ -330,99 +477,7 @@ void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law
       for (const auto &kv : w)
         if (!SchemaView{wall_params, std::size(wall_params)}.find(kv.first.as<std::string>()))
           law_keys.insert(kv.first.as<std::string>());
-    const std::string path = fmt::format("walls[{}]", k);
-    WallSpec spec;
-    spec.key_path = path;
-    spec.where = r.at(w);
-    if (!w.IsMap()) {
-      r.diag.error(r.at(w), path, "expected a mapping with type: plane, box or cylinder");
-      continue;
-    }
-    // host keys here; the contact law's keys override the particle-particle law's values for this wall
-    const auto v = r.section(wall_params, std::size(wall_params), w, path, law_keys);
-    if (!v.contains("type") || !v["type"].is_string()) continue;
-    const std::string type = v["type"];
-    spec.kind = type == "box"        ? WallKind::box
-                : type == "cylinder" ? WallKind::cylinder
-                : type == "spreader" ? WallKind::spreader
-                                     : WallKind::plane;
-    if (v.contains("name") && v["name"].is_string()) spec.name = v["name"];
-    if (v.contains("open_top") && v["open_top"].is_boolean()) spec.open_top = v["open_top"];
-    if (v.contains("start") && v["start"].is_number()) spec.start = v["start"];
-    if (w["velocity"])
-      if (auto vel = r.vector(w["velocity"], path + ".velocity", "m/s", "translation velocity")) spec.velocity = *vel;
-    auto need = [&](const char *key, const char *what) {
-      if (w[key]) return true;
-      r.diag.error(r.at(w), path + "." + key, fmt::format("required value missing for a {}", type), what);
-      return false;
-    };
-    // keys of the other wall types are refused, so a typo in `type` is not silently another wall
-    auto foreign = [&](std::initializer_list<const char *> keys) {
-      for (const char *key : keys)
-        if (w[key])
-          r.diag.error(
-              r.at(w[key]), path + "." + key, fmt::format("not a key of a {} wall", type),
-              "plane: point, normal; box: lo, hi, open_top; cylinder: base, axis, radius, height, inside, omega; "
-              "spreader: spreader (its motion is the plugin's)");
-    };
-    if (spec.kind == WallKind::spreader) {
-      foreign({"point", "normal", "lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega",
-               "velocity"});
-      read_spreader(r, w, path, registry, s.domain, spec.spreader);
-      spec.spreader.time_offset = -spec.start;  // the plugin's time 0 (its start) at `start`, at rest before
-    } else if (spec.kind == WallKind::plane) {
-      foreign({"lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
-      if (need("point", "add point: [x, y, z] (m), a point of the plane"))
-        if (auto p = r.vector(w["point"], path + ".point", "m", "a point of the plane")) spec.point = *p;
-      if (need("normal", "add normal: [nx, ny, nz], pointing to the particles' side"))
-        if (auto n = r.direction(w["normal"], path + ".normal", "normal into the particles' side")) spec.normal = *n;
-    } else if (spec.kind == WallKind::box) {
-      foreign({"point", "normal", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
-      std::optional<Vec> lo, hi;
-      if (need("lo", "add lo: [x, y, z] (m)")) lo = r.vector(w["lo"], path + ".lo", "m", "lower corner");
-      if (need("hi", "add hi: [x, y, z] (m)")) hi = r.vector(w["hi"], path + ".hi", "m", "upper corner");
-      if (lo && hi) {
-        spec.lo = *lo;
-        spec.hi = *hi;
-        for (int a = 0; a < 3; ++a)
-          if (!((*hi)[a] > (*lo)[a]))
-            r.diag.error(r.at(w["hi"]), path + ".hi",
-                         fmt::format("hi.{} is not above lo.{}: the box is empty", "xyz"[a], "xyz"[a]),
-                         "make hi greater than lo along every axis");
-      }
-    } else {
-      foreign({"point", "normal", "lo", "hi", "open_top", "spreader"});
-      CylinderWall &c = spec.cylinder;
-      c = CylinderWall{{0, 0, 0}, {0, 0, 1}, 0, 0, {0, 0, 0}, 0, 0, true};
-      if (need("base", "add base: [x, y, z] (m), the centre of its bottom end"))
-        if (auto b = r.vector(w["base"], path + ".base", "m", "centre of the bottom end"))
-          std::copy(b->begin(), b->end(), c.base);
-      if (w["axis"])
-        if (auto a = r.direction(w["axis"], path + ".axis", "axis direction")) std::copy(a->begin(), a->end(), c.axis);
-      c.radius = v.contains("radius") && v["radius"].is_number() ? v["radius"].get<double>() : 0.0;
-      c.height = v.contains("height") && v["height"].is_number() ? v["height"].get<double>() : 0.0;
-      if (w["radius"] && v["radius"].is_number() && !(c.radius > 0))
-        r.diag.error(r.at(w["radius"]), path + ".radius", "a cylinder needs radius > 0");
-      if (w["height"] && v["height"].is_number() && !(c.height > 0))
-        r.diag.error(r.at(w["height"]), path + ".height", "a cylinder needs height > 0");
-      need("radius", "add radius: R (m)");
-      need("height", "add height: H (m), its length along the axis");
-      c.inside = v.contains("inside") && v["inside"].is_boolean() ? v["inside"].get<bool>() : true;
-      c.omega = v.contains("omega") && v["omega"].is_number() ? v["omega"].get<double>() : 0.0;
-      c.start = spec.start;
-      std::copy(spec.velocity.begin(), spec.velocity.end(), c.velocity);
-    }
-    // the wall's law: the particle-particle values with this wall's overrides
-    spec.law = s.pair_law;
-    if (law) {
-      YAML::Node own(YAML::NodeType::Map);
-      for (const auto &kv : w)
-        if (law_keys.count(kv.first.as<std::string>())) own[kv.first] = kv.second;
-      const auto mine = validate_params(SchemaView::of(*law->descriptor), own, r.file, path, r.diag, {}, false);
-      for (auto &[key, value] : mine.items()) spec.law[key] = value;
-    }
-    spec.name = wall_label(spec, k);
-    s.walls.push_back(std::move(spec));
+    if (auto spec = read_wall(r, w, k, law, law_keys, registry, s)) s.walls.push_back(std::move(*spec));
   }
 }
 

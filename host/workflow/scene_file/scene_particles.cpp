@@ -1,10 +1,10 @@
 #include "workflow/scene_file/scene_particles.hpp"
 
 #include <fmt/format.h>
+#include <spreadmap/sphere.hpp>
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <unordered_map>
 
 #include "core/error.hpp"
@@ -123,8 +123,7 @@ SceneParticles load_particles(const SceneFile &scene) {
           "column to {} or particles.density: <kg/m^3> to the scene",
           scene.particles.where.str(), scene.particles.file.string()));
     s.mass.resize(s.size());
-    for (std::size_t i = 0; i < s.size(); ++i)
-      s.mass[i] = scene.particles.density * 4.0 / 3.0 * std::numbers::pi * std::pow(s.radius[i], 3);
+    for (std::size_t i = 0; i < s.size(); ++i) s.mass[i] = sphere_mass(scene.particles.density, s.radius[i]);
   }
   return out;
 }

@@ -1,9 +1,9 @@
 // One case of the design: the settled heap (computed once per distinct heap and shared by every
-// case that has the same powder, domain, contacts and spreader position), then the spreading run,
-// with checkpoints every `time.checkpoint_interval` wall-clock seconds and a clean stop on SIGINT.
-// Writes state.vtp (+ series/ and series.pvd when snapshots are asked for) and case.json. With
-// scene.layers.count > 1, each layer's pass in layer_K/ (state.vtp, layer.json), the last one's
-// state as the case's state.vtp.
+// case that has the same powder, domain, contacts and spreader position: heap_cache.hpp), then the
+// spreading run (spread_pass.hpp), with checkpoints every `time.checkpoint_interval` wall-clock
+// seconds and a clean stop on SIGINT. Writes state.vtp (+ series/ and series.pvd when snapshots are
+// asked for) and case.json (case_record.hpp). With scene.layers.count > 1, each layer's pass in
+// layer_K/ (state.vtp, layer.json), the last one's state as the case's state.vtp (layers.hpp).
 #pragma once
 #include <filesystem>
 #include <functional>

@@ -43,6 +43,11 @@ struct Fidelity {
   nlohmann::json description = nlohmann::json::object();  // key -> value as written
 };
 
+// One fidelity's runs, one entry per heap: V_s, R_q, wall time and particle-steps.
+struct HeapRuns {
+  std::vector<double> vs, rq, wall, psteps;
+};
+
 using Stats = analysis::MeanSd;
 const auto stats = analysis::mean_sd;
 
@@ -107,37 +112,8 @@ class TradeoffStage : public Stage {
 
   void run(StageContext &ctx) override {
     figures::use_style(style_);
-    struct Result {
-      std::vector<double> vs, rq, wall, psteps;
-    };
-    std::vector<Result> results(fidelities_.size());
-    for (std::size_t f = 0; f < fidelities_.size(); ++f) {
-      for (int h = 1; h <= heaps_; ++h) {
-        CaseRequest req;
-        req.id = fmt::format("tradeoff_{}_heap{}", fidelities_[f].name, h);
-        req.scene = ctx.scene;
-        for (const auto &o : fidelities_[f].overrides) apply_scene_value(req.scene, o.key, o.value);
-        req.scene.powder.seed = h;
-        req.inputs = {{"fidelity", fidelities_[f].name}, {"seed", h}};
-        req.dir = ctx.run.case_dir(req.id);
-        req.heaps = ctx.run.heaps();
-        bool ran = false;
-        const auto c = ensure_case(ctx, req, render_, ran, "tradeoff");
-        const auto layer = measure_case_layer(ctx.registry, req.scene, req.dir);
-        auto &r = results[f];
-        r.vs.push_back(layer.metrics.value("vs", std::nan("")));
-        r.rq.push_back(layer.metrics.value("rq", std::nan("")));
-        // wall time of the case as last measured: the manifest keeps it across resumed runs
-        double wall = c.value("wall_seconds_last_run", std::nan(""));
-        for (const auto &mc : ctx.run.manifest()["cases"])
-          if (mc.value("id", "") == req.id && mc.contains("wall_seconds")) wall = mc["wall_seconds"];
-        r.wall.push_back(wall);
-        r.psteps.push_back(c.value("steps", 0.0) * 0.5 *
-                           (c.value("particles_start", 0.0) + c.value("particles_end", 0.0)));
-        spdlog::info("tradeoff: {} heap {}: V_s {:.4g} mm^2/s, R_q {:.4g} um, {:.1f} s{}", fidelities_[f].name, h,
-                     r.vs.back() * 1e6, r.rq.back() * 1e6, wall, ran ? "" : " (finished before)");
-      }
-    }
+    std::vector<HeapRuns> results;
+    for (const auto &fidelity : fidelities_) results.push_back(run_heaps(ctx, fidelity));
     std::size_t ref = 0;
     for (std::size_t f = 1; f < results.size(); ++f)
       if (stats(results[f].psteps).mean > stats(results[ref].psteps).mean) ref = f;
@@ -188,6 +164,36 @@ class TradeoffStage : public Stage {
   }
 
  private:
+  // The fidelity's case on each heap (seeds 1 to heaps_), run or read back, and measured.
+  HeapRuns run_heaps(StageContext &ctx, const Fidelity &fidelity) const {
+    HeapRuns r;
+    for (int h = 1; h <= heaps_; ++h) {
+      CaseRequest req;
+      req.id = fmt::format("tradeoff_{}_heap{}", fidelity.name, h);
+      req.scene = ctx.scene;
+      for (const auto &o : fidelity.overrides) apply_scene_value(req.scene, o.key, o.value);
+      req.scene.powder.seed = h;
+      req.inputs = {{"fidelity", fidelity.name}, {"seed", h}};
+      req.dir = ctx.run.case_dir(req.id);
+      req.heaps = ctx.run.heaps();
+      bool ran = false;
+      const auto c = ensure_case(ctx, req, render_, ran, "tradeoff");
+      const auto layer = measure_case_layer(ctx.registry, req.scene, req.dir);
+      r.vs.push_back(layer.metrics.value("vs", std::nan("")));
+      r.rq.push_back(layer.metrics.value("rq", std::nan("")));
+      // wall time of the case as last measured: the manifest keeps it across resumed runs
+      double wall = c.value("wall_seconds_last_run", std::nan(""));
+      for (const auto &mc : ctx.run.manifest()["cases"])
+        if (mc.value("id", "") == req.id && mc.contains("wall_seconds")) wall = mc["wall_seconds"];
+      r.wall.push_back(wall);
+      r.psteps.push_back(c.value("steps", 0.0) * 0.5 *
+                         (c.value("particles_start", 0.0) + c.value("particles_end", 0.0)));
+      spdlog::info("tradeoff: {} heap {}: V_s {:.4g} mm^2/s, R_q {:.4g} um, {:.1f} s{}", fidelity.name, h,
+                   r.vs.back() * 1e6, r.rq.back() * 1e6, wall, ran ? "" : " (finished before)");
+    }
+    return r;
+  }
+
   std::vector<Fidelity> fidelities_;
   int heaps_ = 3;
   figures::Style style_;

@@ -27,6 +27,69 @@ std::vector<std::string> split_list(const std::string &text) {
   return out;
 }
 
+namespace {
+
+// The scores as one JSON document (--format json), the outputs by name.
+void print_scores_json(const analysis::Report &report, const std::string &model, const fs::path &dir) {
+  nlohmann::json j = nlohmann::json::object();
+  const nlohmann::json scores = report.to_json();
+  for (const auto &o : scores["outputs"]) j[o["name"].get<std::string>()] = o;
+  std::cout << nlohmann::json({{"model", "surrogate/" + model},
+                               {"split", report.split},
+                               {"split_reason", report.split_reason},
+                               {"n_train", report.n_train},
+                               {"n_test", report.n_test},
+                               {"cv_rows", report.cv_rows},
+                               {"cv_folds", report.cv_folds},
+                               {"outputs", j},
+                               {"notes", report.notes},
+                               {"model_file", (dir / "model.json").string()}})
+                   .dump(2)
+            << "\n";
+}
+
+// The scores as a table (--format table), with the fitted noise and signal scales and the notes.
+void print_scores_table(const analysis::Report &report, const std::string &model, const std::string &table,
+                        const fs::path &dir) {
+  std::cout << fmt::format("surrogate/{} on {} ({} train, {} test rows; split {}: {}): {}\n", model, table,
+                           report.n_train, report.n_test, report.split, report.split_reason,
+                           (dir / "model.json").string());
+  const auto cell = [](double v, int digits) { return std::isfinite(v) ? fmt::format("{:.{}f}", v, digits) : "-"; };
+  std::cout << fmt::format("  {:<12} {:>14} {:>14} {:>16} {:>8} {:>8} {:>8}\n", "output", "NRMSE train %",
+                           "NRMSE test %", "NRMSE cv %", "R train", "R test", "R cv");
+  for (const auto &o : report.outputs) {
+    const std::string cv = std::isfinite(o.nrmse_cv) ? cell(o.nrmse_cv, 3) + " +- " + cell(o.nrmse_cv_sd, 3) : "-";
+    std::cout << fmt::format("  {:<12} {:>14} {:>14} {:>16} {:>8} {:>8} {:>8}\n", o.name, cell(o.nrmse_train, 3),
+                             cell(o.nrmse_test, 3), cv, cell(o.r_train, 4), cell(o.r_test, 4), cell(o.r_cv, 4));
+  }
+  for (const auto &o : report.outputs)
+    if (std::isfinite(o.noise_std))
+      std::cout << fmt::format("  {}: noise {}, signal {} (fitted)\n", o.name, display(o.noise_std, o.unit),
+                               display(o.signal_std, o.unit));
+  if (report.cv_folds)
+    std::cout << fmt::format("  NRMSE cv: {} folds of {} rows, +- the standard deviation over the folds\n",
+                             report.cv_folds, report.cv_rows);
+  for (const auto &n : report.notes) std::cout << "  note: " << n << "\n";
+}
+
+// The table, its inputs and outputs each a column of it.
+analysis::Table read_training_table(const std::string &table, const TrainRequest &rq) {
+  const auto t = [&] {
+    try {
+      return analysis::Table::read_csv(table);
+    } catch (const std::exception &e) {
+      throw InputError(std::string("error: ") + e.what());
+    }
+  }();
+  for (const auto &name : rq.inputs)
+    if (!t.has_column(name)) throw InputError("error: --inputs: " + table + " has no column '" + name + "'");
+  for (const auto &name : rq.outputs)
+    if (!t.has_column(name)) throw InputError("error: --outputs: " + table + " has no column '" + name + "'");
+  return t;
+}
+
+}  // namespace
+
 int cmd_train(int argc, char **argv) {
   namespace po = boost::program_options;
   po::options_description d("train options");
@@ -47,8 +110,8 @@ int cmd_train(int argc, char **argv) {
       "folds", cli::whole_number("folds", &folds, "a number of folds (2 or more)")->default_value("5"),
       "K of a plain --split kfold")(
       "seed", cli::whole_number("seed", &rq.seed, "a seed (a whole number, 0 or more)")->default_value("1"),
-      "seed of the split")(
-      "param", po::value(&params)->multitoken(), "surrogate parameter KEY=VALUE (see spreadmap plugins MODEL)")(
+      "seed of the split")("param", po::value(&params)->multitoken(),
+                           "surrogate parameter KEY=VALUE (see spreadmap plugins MODEL)")(
       "no-figures", "do not render parity.png")("format", po::value(&format)->default_value("table"), "table | json");
   c.add(d);
   po::positional_options_description p;
@@ -72,58 +135,11 @@ int cmd_train(int argc, char **argv) {
   auto &registry = PluginRegistry::global();
   rq.params = surrogate_params(registry, rq.model, params);
   rq.units = units_beside(table);
-  const auto t = [&] {
-    try {
-      return analysis::Table::read_csv(table);
-    } catch (const std::exception &e) {
-      throw InputError(std::string("error: ") + e.what());
-    }
-  }();
-  for (const auto &name : rq.inputs)
-    if (!t.has_column(name)) throw InputError("error: --inputs: " + table + " has no column '" + name + "'");
-  for (const auto &name : rq.outputs)
-    if (!t.has_column(name)) throw InputError("error: --outputs: " + table + " has no column '" + name + "'");
+  const analysis::Table t = read_training_table(table, rq);
   const fs::path dir = out.empty() ? fs::path(table).parent_path() / ("train_" + rq.model) : fs::path(out);
   const auto result = train_surrogate(registry, t, rq, dir, !vm.count("no-figures"));
-
-  const auto &report = result.report;
-  if (format == "json") {
-    nlohmann::json j = nlohmann::json::object();
-    const nlohmann::json scores = report.to_json();
-    for (const auto &o : scores["outputs"]) j[o["name"].get<std::string>()] = o;
-    std::cout << nlohmann::json({{"model", "surrogate/" + rq.model},
-                                 {"split", report.split},
-                                 {"split_reason", report.split_reason},
-                                 {"n_train", report.n_train},
-                                 {"n_test", report.n_test},
-                                 {"cv_rows", report.cv_rows},
-                                 {"cv_folds", report.cv_folds},
-                                 {"outputs", j},
-                                 {"notes", report.notes},
-                                 {"model_file", (dir / "model.json").string()}})
-                     .dump(2)
-              << "\n";
-  } else {
-    std::cout << fmt::format("surrogate/{} on {} ({} train, {} test rows; split {}: {}): {}\n", rq.model, table,
-                             report.n_train, report.n_test, report.split, report.split_reason,
-                             (dir / "model.json").string());
-    const auto cell = [](double v, int digits) { return std::isfinite(v) ? fmt::format("{:.{}f}", v, digits) : "-"; };
-    std::cout << fmt::format("  {:<12} {:>14} {:>14} {:>16} {:>8} {:>8} {:>8}\n", "output", "NRMSE train %",
-                             "NRMSE test %", "NRMSE cv %", "R train", "R test", "R cv");
-    for (const auto &o : report.outputs) {
-      const std::string cv = std::isfinite(o.nrmse_cv) ? cell(o.nrmse_cv, 3) + " +- " + cell(o.nrmse_cv_sd, 3) : "-";
-      std::cout << fmt::format("  {:<12} {:>14} {:>14} {:>16} {:>8} {:>8} {:>8}\n", o.name, cell(o.nrmse_train, 3),
-                               cell(o.nrmse_test, 3), cv, cell(o.r_train, 4), cell(o.r_test, 4), cell(o.r_cv, 4));
-    }
-    for (const auto &o : report.outputs)
-      if (std::isfinite(o.noise_std))
-        std::cout << fmt::format("  {}: noise {}, signal {} (fitted)\n", o.name, display(o.noise_std, o.unit),
-                                 display(o.signal_std, o.unit));
-    if (report.cv_folds)
-      std::cout << fmt::format("  NRMSE cv: {} folds of {} rows, +- the standard deviation over the folds\n",
-                               report.cv_folds, report.cv_rows);
-    for (const auto &n : report.notes) std::cout << "  note: " << n << "\n";
-  }
+  if (format == "json") print_scores_json(result.report, rq.model, dir);
+  else print_scores_table(result.report, rq.model, table, dir);
   return 0;
 }
 

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <functional>
 
 #include "analysis/cross_validation.hpp"
 #include "analysis/plugin_model.hpp"
@@ -78,12 +79,8 @@ void add_scales(analysis::OutputScores &s, const nlohmann::json &fit, std::size_
   if (j.contains("noise_std") && j["noise_std"].is_number()) s.noise_std = j["noise_std"].get<double>();
 }
 
-}  // namespace
-
-TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &table, const TrainRequest &rq,
-                            const std::filesystem::path &out_dir, bool figures_on) {
-  if (rq.inputs.empty() || rq.outputs.empty())
-    throw InputError("error: train: give at least one input and one output column");
+// The rows that train: those whose inputs and outputs are all numbers, at least 4 of them.
+std::vector<std::size_t> training_rows(const analysis::Table &table, const TrainRequest &rq) {
   std::vector<std::size_t> cols;
   for (const auto &name : rq.inputs) cols.push_back(table.column(name));
   for (const auto &name : rq.outputs) cols.push_back(table.column(name));
@@ -94,6 +91,118 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   if (rows.size() < 4)
     throw InputError("error: train: " + table.source() + " has " + std::to_string(rows.size()) +
                      " usable rows; a surrogate needs at least 4 (simulate more cases)");
+  return rows;
+}
+
+// Fits the model on the training rows. Rows that are means of replicated runs carry their scatter
+// (`noise`): the model takes it as known noise when it can. True when it did.
+bool fit_on_training_rows(analysis::Model &model, const TrainRequest &rq, const Eigen::MatrixXd &x,
+                          const Eigen::MatrixXd &y, const Eigen::MatrixXd &noise, const Split &split) {
+  const bool known_noise = (noise.array() > 0).any() && model.takes_noise();
+  if (known_noise)
+    spdlog::info("train {}: the replicate scatter of {} rows is given to the model as their known noise", rq.model,
+                 (noise.array() > 0).rowwise().any().count());
+  else if ((noise.array() > 0).any())
+    spdlog::info("train {}: surrogate/{} takes no known noise: it fits the replicates' means alone", rq.model,
+                 rq.model);
+  if (known_noise)
+    model.fit_with_noise(x(split.train, Eigen::all), y(split.train, Eigen::all), noise(split.train, Eigen::all));
+  else model.fit(x(split.train, Eigen::all), y(split.train, Eigen::all));
+  return known_noise;
+}
+
+// The name of row i of `rows` in the outputs: its case, or its row number when the table has no case column.
+std::string case_label(const analysis::Table &table, const std::vector<std::size_t> &rows, std::size_t i) {
+  return table.has_column("case") ? table.text(rows[i], table.column("case")) : std::to_string(rows[i]);
+}
+
+// Cross-validation over the training rows: all rows under kfold and loo, the training share of a
+// holdout (5 folds) beside its test scores. Each fold gets a fresh model fitted without it. Scores the
+// report; returns cv.csv: each cross-validated row's true value and its out-of-fold prediction, by output.
+analysis::Table cross_validate_training(const std::function<std::unique_ptr<analysis::Model>()> &make,
+                                        const Eigen::MatrixXd &x, const Eigen::MatrixXd &y, const Split &split,
+                                        const analysis::Validation &v, const TrainRequest &rq,
+                                        const analysis::Table &table, const std::vector<std::size_t> &rows,
+                                        const Eigen::MatrixXd &known_noise, analysis::Report &report) {
+  const std::size_t n_cv = split.train.size();
+  const std::size_t k = v.kind == analysis::Validation::Kind::loo     ? n_cv
+                        : v.kind == analysis::Validation::Kind::kfold ? v.folds
+                                                                      : std::min<std::size_t>(5, n_cv);
+  if (k > n_cv)
+    throw InputError(
+        fmt::format("error: train: split {} needs at least {} usable rows, {} has {}; use loo or fewer folds",
+                    analysis::spelling(v), k, table.source(), n_cv));
+  std::vector<std::string> cv_names = {"case", "fold"};
+  for (const auto &o : rq.outputs) cv_names.push_back(o + "_true"), cv_names.push_back(o + "_cv");
+  analysis::Table cv_table(cv_names, "cv.csv");
+  if (n_cv >= min_cv_rows) {
+    const auto cv = analysis::cross_validate(make, x, y, split.train, analysis::k_fold(n_cv, k, rq.seed), known_noise);
+    analysis::score_cross_validation(report, cv, y);
+    for (std::size_t i = 0; i < cv.rows.size(); ++i) {
+      std::vector<std::string> cells = {case_label(table, rows, cv.rows[i]), std::to_string(cv.fold[i])};
+      for (Eigen::Index c = 0; c < y.cols(); ++c)
+        cells.push_back(analysis::Table::format(y(Eigen::Index(cv.rows[i]), c))),
+            cells.push_back(analysis::Table::format(cv.predicted(Eigen::Index(i), c)));
+      cv_table.add_row(cells);
+    }
+  } else {
+    report.note(
+        fmt::format("nrmse_cv is null: {} training rows; cross-validation needs at least {}", n_cv, min_cv_rows));
+  }
+  return cv_table;
+}
+
+// model.json's content: the plugin, its parameters and state, the variables' ranges and units, and
+// how it was trained. Adds the model's fitted scales to the report's outputs.
+analysis::ModelFile trained_model_file(const LoadedPlugin &plugin, const analysis::Model &model, const TrainRequest &rq,
+                                       const Eigen::MatrixXd &x, const Eigen::MatrixXd &y, const analysis::Table &table,
+                                       std::size_t rows, analysis::Report &report) {
+  analysis::ModelFile file;
+  file.plugin = "surrogate/" + rq.model;
+  file.plugin_version = plugin.descriptor->version;
+  file.params = rq.params;
+  for (Eigen::Index i = 0; i < x.cols(); ++i) file.inputs.push_back(variable(rq.inputs[i], x.col(i), rq.units));
+  for (Eigen::Index i = 0; i < y.cols(); ++i) file.outputs.push_back(variable(rq.outputs[i], y.col(i), rq.units));
+  const nlohmann::json fit = model.fit_info();
+  for (std::size_t o = 0; o < report.outputs.size(); ++o) add_scales(report.outputs[o], fit, o, file.outputs[o].unit);
+  file.state = model.state();
+  file.training = {{"source", table.source()},
+                   {"rows", rows},
+                   {"split", report.split},
+                   {"seed", rq.seed},
+                   {"folds", report.cv_folds},
+                   {"report", report.to_json()},
+                   {"fit", fit}};
+  return file;
+}
+
+// data.csv: the rows used, their inputs and outputs, and the share (train or test) each was in.
+analysis::Table training_data_table(const TrainRequest &rq, const Eigen::MatrixXd &x, const Eigen::MatrixXd &y,
+                                    const Split &split, const analysis::Table &table,
+                                    const std::vector<std::size_t> &rows) {
+  std::vector<std::string> names = {"case"};
+  names.insert(names.end(), rq.inputs.begin(), rq.inputs.end());
+  names.insert(names.end(), rq.outputs.begin(), rq.outputs.end());
+  names.push_back("split");
+  analysis::Table data(names, "data.csv");
+  const auto labels = analysis::split_labels(split, rows.size());
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    std::vector<std::string> cells = {case_label(table, rows, i)};
+    for (Eigen::Index c = 0; c < x.cols(); ++c) cells.push_back(analysis::Table::format(x(Eigen::Index(i), c)));
+    for (Eigen::Index c = 0; c < y.cols(); ++c) cells.push_back(analysis::Table::format(y(Eigen::Index(i), c)));
+    cells.push_back(labels[i]);
+    data.add_row(cells);
+  }
+  return data;
+}
+
+}  // namespace
+
+TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &table, const TrainRequest &rq,
+                            const std::filesystem::path &out_dir, bool figures_on) {
+  if (rq.inputs.empty() || rq.outputs.empty())
+    throw InputError("error: train: give at least one input and one output column");
+  const std::vector<std::size_t> rows = training_rows(table, rq);
 
   const Eigen::MatrixXd x = table.matrix(rq.inputs, rows), y = table.matrix(rq.outputs, rows);
   const LoadedPlugin &plugin = registry.get("surrogate", rq.model);
@@ -104,92 +213,20 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   const Split split = split_rows(table, rows, v, rq.seed);
   if (split.train.size() < 2) throw InputError("error: train: fewer than 2 training rows in " + table.source());
 
-  // Rows that are means of replicated runs carry their scatter: the model takes it as known noise.
   const Eigen::MatrixXd noise = analysis::replicate_noise_variance(table, rq.outputs, rows);
   auto model = make();
-  const bool known_noise = (noise.array() > 0).any() && model->takes_noise();
-  if (known_noise)
-    spdlog::info("train {}: the replicate scatter of {} rows is given to the model as their known noise", rq.model,
-                 (noise.array() > 0).rowwise().any().count());
-  else if ((noise.array() > 0).any())
-    spdlog::info("train {}: surrogate/{} takes no known noise: it fits the replicates' means alone", rq.model,
-                 rq.model);
-  if (known_noise)
-    model->fit_with_noise(x(split.train, Eigen::all), y(split.train, Eigen::all), noise(split.train, Eigen::all));
-  else model->fit(x(split.train, Eigen::all), y(split.train, Eigen::all));
+  const bool known_noise = fit_on_training_rows(*model, rq, x, y, noise, split);
   analysis::Report report = analysis::make_report(*model, x, y, split, rq.outputs);
   report.split = analysis::spelling(v), report.split_reason = v.reason;
 
-  // Cross-validation over the training rows: all rows under kfold and loo, the training share of a
-  // holdout (5 folds) beside its test scores. Each fold gets a fresh model fitted without it.
-  const std::size_t n_cv = split.train.size();
-  const std::size_t k = v.kind == analysis::Validation::Kind::loo     ? n_cv
-                        : v.kind == analysis::Validation::Kind::kfold ? v.folds
-                                                                      : std::min<std::size_t>(5, n_cv);
-  if (k > n_cv)
-    throw InputError(
-        fmt::format("error: train: split {} needs at least {} usable rows, {} has {}; use loo or fewer folds",
-                    analysis::spelling(v), k, table.source(), n_cv));
-  const bool has_case = table.has_column("case");
-  const auto case_of = [&](std::size_t i) {
-    return has_case ? table.text(rows[i], table.column("case")) : std::to_string(rows[i]);
-  };
-  // cv.csv: each cross-validated row's true value and its out-of-fold prediction, by output.
-  std::vector<std::string> cv_names = {"case", "fold"};
-  for (const auto &o : rq.outputs) cv_names.push_back(o + "_true"), cv_names.push_back(o + "_cv");
-  analysis::Table cv_table(cv_names, "cv.csv");
-  if (n_cv >= min_cv_rows) {
-    const auto cv = analysis::cross_validate(make, x, y, split.train, analysis::k_fold(n_cv, k, rq.seed),
-                                             known_noise ? noise : Eigen::MatrixXd());
-    analysis::score_cross_validation(report, cv, y);
-    for (std::size_t i = 0; i < cv.rows.size(); ++i) {
-      std::vector<std::string> cells = {case_of(cv.rows[i]), std::to_string(cv.fold[i])};
-      for (Eigen::Index c = 0; c < y.cols(); ++c)
-        cells.push_back(analysis::Table::format(y(Eigen::Index(cv.rows[i]), c))),
-            cells.push_back(analysis::Table::format(cv.predicted(Eigen::Index(i), c)));
-      cv_table.add_row(cells);
-    }
-  } else {
-    report.note(
-        fmt::format("nrmse_cv is null: {} training rows; cross-validation needs at least {}", n_cv, min_cv_rows));
-  }
+  const analysis::Table cv_table =
+      cross_validate_training(make, x, y, split, v, rq, table, rows, known_noise ? noise : Eigen::MatrixXd(), report);
   if (split.test.empty())
     report.note("nrmse_test and r_test are null: " + analysis::describe(v) +
                 " holds no rows out for testing; nrmse_cv is the error to expect on new cases");
 
-  analysis::ModelFile file;
-  file.plugin = "surrogate/" + rq.model;
-  file.plugin_version = plugin.descriptor->version;
-  file.params = rq.params;
-  for (Eigen::Index i = 0; i < x.cols(); ++i) file.inputs.push_back(variable(rq.inputs[i], x.col(i), rq.units));
-  for (Eigen::Index i = 0; i < y.cols(); ++i) file.outputs.push_back(variable(rq.outputs[i], y.col(i), rq.units));
-  const nlohmann::json fit = model->fit_info();
-  for (std::size_t o = 0; o < report.outputs.size(); ++o) add_scales(report.outputs[o], fit, o, file.outputs[o].unit);
-  file.state = model->state();
-  file.training = {{"source", table.source()},
-                   {"rows", rows.size()},
-                   {"split", report.split},
-                   {"seed", rq.seed},
-                   {"folds", report.cv_folds},
-                   {"report", report.to_json()},
-                   {"fit", fit}};
-
-  analysis::Table data(std::vector<std::string>{"case"}, "data.csv");
-  {
-    std::vector<std::string> names = {"case"};
-    names.insert(names.end(), rq.inputs.begin(), rq.inputs.end());
-    names.insert(names.end(), rq.outputs.begin(), rq.outputs.end());
-    names.push_back("split");
-    data = analysis::Table(names, "data.csv");
-    const auto labels = analysis::split_labels(split, rows.size());
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      std::vector<std::string> cells = {case_of(i)};
-      for (Eigen::Index c = 0; c < x.cols(); ++c) cells.push_back(analysis::Table::format(x(Eigen::Index(i), c)));
-      for (Eigen::Index c = 0; c < y.cols(); ++c) cells.push_back(analysis::Table::format(y(Eigen::Index(i), c)));
-      cells.push_back(labels[i]);
-      data.add_row(cells);
-    }
-  }
+  analysis::ModelFile file = trained_model_file(plugin, *model, rq, x, y, table, rows.size(), report);
+  analysis::Table data = training_data_table(rq, x, y, split, table, rows);
 
   std::filesystem::create_directories(out_dir);
   analysis::save_model_json((out_dir / "model.json").string(), file);

@@ -122,6 +122,79 @@ class VerifyStage : public Stage {
     bool verified = false;
   };
 
+  // The distinct operating points the map's optima propose, each with the rq_max targets it meets.
+  struct Proposed {
+    std::vector<VerifyPoint> points;
+    std::vector<Eigen::VectorXd> xs;
+    std::vector<std::vector<double>> targets;
+  };
+
+  static Proposed proposed_points(StageContext &ctx, const analysis::ModelFile &model, const nlohmann::json &optimum,
+                                  std::size_t round) {
+    Proposed out;
+    for (const auto &o : optimum.value("optima", nlohmann::json::array())) {
+      if (!o.value("found", false)) {
+        spdlog::warn("verify: no optimum for R_q <= {} to verify", display(o.value("rq_max", 0.0), "m"));
+        continue;
+      }
+      Eigen::VectorXd x(Eigen::Index(model.inputs.size()));
+      for (std::size_t i = 0; i < model.inputs.size(); ++i) x(Eigen::Index(i)) = o["inputs"][model.inputs[i].name];
+      std::size_t p = 0;
+      while (p < out.xs.size() && out.xs[p] != x) ++p;
+      if (p == out.xs.size()) {
+        out.xs.push_back(x), out.targets.emplace_back();
+        const std::string id = (round ? "round" + std::to_string(round) + "_v" : "v") + std::to_string(p);
+        out.points.push_back({id, point_scene(ctx, model, x), o["inputs"]});
+      }
+      out.targets[p].push_back(o["rq_max"].get<double>());
+    }
+    return out;
+  }
+
+  // One point's runs against the model's prediction, V_s and R_q each inside its interval or not, as
+  // verified.json records it ("verified": both inside).
+  nlohmann::json checked_point(StageContext &ctx, const analysis::ModelFile &model, std::size_t vs, std::size_t rq,
+                               const VerifyPoint &point, const Eigen::VectorXd &x, const std::vector<double> &targets,
+                               const std::vector<nlohmann::json> &simulated,
+                               const std::vector<double> &known_var) const {
+    const auto predicted = predict_for_runs(ctx.registry, model, x, runs_, known_var);
+    nlohmann::json checks = nlohmann::json::object();
+    bool verified = true;
+    std::vector<bool> met;  // per target: the simulated mean R_q at most rq_max
+    for (const auto o : {vs, rq}) {
+      const std::string metric = model.outputs[o].name;
+      std::vector<double> values;
+      for (const auto &m : simulated) {
+        const auto &v = m["metrics"].value(metric, nlohmann::json());
+        if (!v.is_number())
+          throw RunFailure("error: verify: " + m.value("case", "") + " has no value of " + metric +
+                           " (empty sampling region?); see its metrics.json");
+        values.push_back(v.get<double>());
+      }
+      const MetricCheck c = check_metric(metric, model.outputs[o].unit, predicted[o], values);
+      verified = verified && c.inside;
+      checks[metric] = c.to_json();
+      if (o == rq)
+        for (double t : targets) met.push_back(c.mean <= t);
+      spdlog::info("verify: {} {}: predicted {} +- {} (2 std), simulated {} over {} runs: {}", point.id, metric,
+                   display(c.predicted.mean, c.unit), display(2 * c.predicted.std, c.unit), display(c.mean, c.unit),
+                   values.size(), c.inside ? "inside" : "OUTSIDE the interval");
+    }
+    const nlohmann::json edges = edges_of(model, x);
+    if (!edges.empty()) spdlog::warn("verify: {} ({}) is {}", point.id, describe(model, x), edge_note());
+    std::vector<std::string> cases;
+    for (std::size_t r = 0; r < runs_; ++r) cases.push_back("verify/" + replicate_id(point.id, r));
+    nlohmann::json out = {
+        {"id", point.id},    {"rq_max", targets},    {"rq_max_met", met},         {"inputs", point.inputs},
+        {"metrics", checks}, {"verified", verified}, {"at_edge", !edges.empty()}, {"edges", edges},
+        {"cases", cases}};
+    if (!edges.empty()) out["edge_note"] = edge_note();
+    spdlog::info("verify: {} ({}): {}", point.id, describe(model, x),
+                 verified ? "verified: the simulation falls inside the predicted interval"
+                          : "NOT verified: the simulation falls outside the predicted interval");
+    return out;
+  }
+
   // One round: the map's current optimum simulated with new heaps and compared with the model.
   Round verify_round(StageContext &ctx, std::size_t round) {
     const fs::path optimum_json = ctx.run.map_dir() / "optimum.json";
@@ -134,25 +207,8 @@ class VerifyStage : public Stage {
     const auto vs = output_index(model, "vs"), rq = output_index(model, "rq");
     if (!vs || !rq) throw InputError("error: verify: the model " + plugin + " has no outputs named vs and rq");
 
-    std::vector<VerifyPoint> points;
-    std::vector<Eigen::VectorXd> xs;
-    std::vector<std::vector<double>> targets;
-    for (const auto &o : optimum.value("optima", nlohmann::json::array())) {
-      if (!o.value("found", false)) {
-        spdlog::warn("verify: no optimum for R_q <= {} to verify", display(o.value("rq_max", 0.0), "m"));
-        continue;
-      }
-      Eigen::VectorXd x(Eigen::Index(model.inputs.size()));
-      for (std::size_t i = 0; i < model.inputs.size(); ++i) x(Eigen::Index(i)) = o["inputs"][model.inputs[i].name];
-      std::size_t p = 0;
-      while (p < xs.size() && xs[p] != x) ++p;
-      if (p == xs.size()) {
-        xs.push_back(x), targets.emplace_back();
-        const std::string id = (round ? "round" + std::to_string(round) + "_v" : "v") + std::to_string(p);
-        points.push_back({id, point_scene(ctx, model, x), o["inputs"]});
-      }
-      targets[p].push_back(o["rq_max"].get<double>());
-    }
+    const Proposed proposed = proposed_points(ctx, model, optimum, round);
+    const std::vector<VerifyPoint> &points = proposed.points;
     if (points.empty())
       throw RunFailure(
           "error: verify: " + optimum_json.string() +
@@ -163,42 +219,9 @@ class VerifyStage : public Stage {
     nlohmann::json out_points = nlohmann::json::array();
     bool all = true;
     for (std::size_t p = 0; p < points.size(); ++p) {
-      const auto predicted = predict_for_runs(ctx.registry, model, xs[p], runs_, known_var);
-      nlohmann::json checks = nlohmann::json::object();
-      bool verified = true;
-      std::vector<bool> met;  // per target: the simulated mean R_q at most rq_max
-      for (const auto o : {*vs, *rq}) {
-        const std::string metric = model.outputs[o].name;
-        std::vector<double> values;
-        for (const auto &m : simulated[p]) {
-          const auto &v = m["metrics"].value(metric, nlohmann::json());
-          if (!v.is_number())
-            throw RunFailure("error: verify: " + m.value("case", "") + " has no value of " + metric +
-                             " (empty sampling region?); see its metrics.json");
-          values.push_back(v.get<double>());
-        }
-        const MetricCheck c = check_metric(metric, model.outputs[o].unit, predicted[o], values);
-        verified = verified && c.inside;
-        checks[metric] = c.to_json();
-        if (o == *rq)
-          for (double t : targets[p]) met.push_back(c.mean <= t);
-        spdlog::info("verify: {} {}: predicted {} +- {} (2 std), simulated {} over {} runs: {}", points[p].id, metric,
-                     display(c.predicted.mean, c.unit), display(2 * c.predicted.std, c.unit), display(c.mean, c.unit),
-                     values.size(), c.inside ? "inside" : "OUTSIDE the interval");
-      }
-      const nlohmann::json edges = edges_of(model, xs[p]);
-      if (!edges.empty()) spdlog::warn("verify: {} ({}) is {}", points[p].id, describe(model, xs[p]), edge_note());
-      std::vector<std::string> cases;
-      for (std::size_t r = 0; r < runs_; ++r) cases.push_back("verify/" + replicate_id(points[p].id, r));
-      nlohmann::json point = {{"id", points[p].id},         {"rq_max", targets[p]}, {"rq_max_met", met},
-                              {"inputs", points[p].inputs}, {"metrics", checks},    {"verified", verified},
-                              {"at_edge", !edges.empty()},  {"edges", edges},       {"cases", cases}};
-      if (!edges.empty()) point["edge_note"] = edge_note();
-      out_points.push_back(point);
-      all = all && verified;
-      spdlog::info("verify: {} ({}): {}", points[p].id, describe(model, xs[p]),
-                   verified ? "verified: the simulation falls inside the predicted interval"
-                            : "NOT verified: the simulation falls outside the predicted interval");
+      out_points.push_back(
+          checked_point(ctx, model, *vs, *rq, points[p], proposed.xs[p], proposed.targets[p], simulated[p], known_var));
+      all = all && out_points.back()["verified"].get<bool>();
     }
     nlohmann::json doc = {{"model", plugin}, {"replicates", runs_}, {"points", out_points}, {"verified", all}};
     if (rounds_ > 1) doc["round"] = round + 1, doc["rounds"] = rounds_, doc["earlier_rounds"] = history_;
