@@ -24,17 +24,17 @@ std::string trim(const std::string &s) {
   const auto b = s.find_first_not_of(" \t\r"), e = s.find_last_not_of(" \t\r");
   return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
 }
-struct Field {
+struct TableCell {
   std::string text;
   std::size_t column;  // 1-based character column where the field starts
 };
 // Splits one CSV line; quoted fields may contain commas and "" for a quote.
-std::vector<Field> split_line(const std::string &line, const std::string &where) {
-  std::vector<Field> out;
+std::vector<TableCell> split_line(const std::string &line, const std::string &where) {
+  std::vector<TableCell> out;
   std::size_t i = 0;
   while (true) {
     while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    Field f{{}, i + 1};
+    TableCell f{{}, i + 1};
     if (i < line.size() && line[i] == '"') {
       ++i;
       bool closed = false;

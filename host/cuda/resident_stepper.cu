@@ -27,7 +27,7 @@ unsigned blocks_for(std::size_t n) { return unsigned((n + block_size - 1) / bloc
 void ok(cudaError_t e, const char *doing) { check(static_cast<int>(e), doing); }
 
 // What a kernel pass reports to the host (copied back once per pass).
-struct Report {
+struct PassReport {
   unsigned long long d2_bits;  // largest squared displacement since the list build, a double's bits
   unsigned int escaped, nonfinite, bad;
 };
@@ -53,7 +53,7 @@ __device__ unsigned int warp_sum(unsigned int v) {
 
 // Every lane of every warp calls this (lanes past the end with neutral values); lane 0 adds its
 // warp's share. d2 >= 0 or NaN: its bits order as the values do, NaN above every number.
-__device__ void add_report(Report *out, double d2, unsigned escaped, unsigned nonfinite, unsigned bad) {
+__device__ void add_report(PassReport *out, double d2, unsigned escaped, unsigned nonfinite, unsigned bad) {
   const unsigned long long m = warp_max(static_cast<unsigned long long>(__double_as_longlong(d2)));
   const unsigned e = warp_sum(escaped), f = warp_sum(nonfinite), b = warp_sum(bad);
   if ((threadIdx.x & 31u) != 0) return;
@@ -64,7 +64,7 @@ __device__ void add_report(Report *out, double d2, unsigned escaped, unsigned no
 }
 
 template <class Real, bool PX, bool PY, bool PZ, bool Rotate>
-__global__ void kick_drift_kernel(engine::KickDrift<Real> k, std::uint32_t n, Report *out) {
+__global__ void kick_drift_kernel(engine::KickDrift<Real> k, std::uint32_t n, PassReport *out) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   double d2 = 0;
   unsigned escaped = 0, nonfinite = 0;
@@ -77,7 +77,7 @@ __global__ void kick_drift_kernel(engine::KickDrift<Real> k, std::uint32_t n, Re
 }
 
 template <class Real, bool Rotate>
-__global__ void kick_check_kernel(engine::KickDrift<Real> k, Real limit2, std::uint32_t n, Report *out) {
+__global__ void kick_check_kernel(engine::KickDrift<Real> k, Real limit2, std::uint32_t n, PassReport *out) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   unsigned bad = 0;
   if (i < n) {
@@ -197,7 +197,7 @@ __global__ void plane_kernel(PlaneArgs<Real> pl, const Real *x, const Real *y, c
 
 template <class Real>
 __global__ void deep_pairs_kernel(ListArgs<Real> a, const std::uint32_t *start, const std::uint32_t *nbr, Real limit,
-                                  Report *out) {
+                                  PassReport *out) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   const unsigned bad =
       i < a.n ? engine::deep_overlaps(i, a.x, a.y, a.z, a.r, start, nbr, nullptr, a.len, a.per, limit) : 0u;
@@ -205,7 +205,7 @@ __global__ void deep_pairs_kernel(ListArgs<Real> a, const std::uint32_t *start, 
 }
 
 template <class Real>
-__global__ void deep_wall_kernel(const Real *overlap, const Real *r, Real limit, std::uint32_t n, Report *out) {
+__global__ void deep_wall_kernel(const Real *overlap, const Real *r, Real limit, std::uint32_t n, PassReport *out) {
   const std::uint32_t i = blockIdx.x * blockDim.x + threadIdx.x;
   add_report(out, 0.0, 0, 0, i < n && overlap[i] > limit * 2 * r[i] ? 1u : 0u);
 }
@@ -302,8 +302,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     if (!state.forces_valid) forces(state);
     const Real dt = Real(state.dt), half = Real(0.5 * state.dt);
     // first half kick and drift
-    const Report first =
-        run_reported([&](Report *out) { launch_kick_drift(state, half, dt, out); }, "the first half kick");
+    const PassReport first =
+        run_reported([&](PassReport *out) { launch_kick_drift(state, half, dt, out); }, "the first half kick");
     if (first.nonfinite > 0) fail_on_host(state, [&] { state.report_bad_particle(); });
     bool rebuild_now = !state.list_valid;
     if (first.escaped > 0) state.leaving = true;  // removed at the next build, as on the CPU
@@ -321,11 +321,11 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     if (rebuild_now) rebuild(state);
     forces(state);
     const Real limit2 = Real(state.speed_limit * state.speed_limit);  // as the CPU rounds it
-    const Report second =
-        run_reported([&](Report *out) { launch_kick_check(state, half, limit2, out); }, "the second half kick");
+    const PassReport second =
+        run_reported([&](PassReport *out) { launch_kick_check(state, half, limit2, out); }, "the second half kick");
     if (second.bad > 0) fail_on_host(state, [&] { state.report_bad_particle(); });
     if (state.step % settings.check_every == 0) {
-      const Report deep = run_reported([&](Report *out) { launch_deep(state, out); }, "the overlap check");
+      const PassReport deep = run_reported([&](PassReport *out) { launch_deep(state, out); }, "the overlap check");
       if (deep.bad > 0) fail_on_host(state, [&] { state.report_deep_overlap(deep.bad); });
     }
     ++counters.steps;
@@ -346,11 +346,11 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     throw RunFailure("error: the GPU run stopped at an invalid state");  // report() throws first
   }
 
-  template <class Launch> Report run_reported(Launch &&launch, const char *what) {
-    ok(cudaMemset(report_.data(), 0, sizeof(Report)), "clearing the step report");
+  template <class Launch> PassReport run_reported(Launch &&launch, const char *what) {
+    ok(cudaMemset(report_.data(), 0, sizeof(PassReport)), "clearing the step report");
     launch(report_.data());
     ok(cudaGetLastError(), what);
-    Report r;
+    PassReport r;
     ok(cudaMemcpy(&r, report_.data(), sizeof r, cudaMemcpyDeviceToHost), what);
     return r;
   }
@@ -373,7 +373,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     return k;
   }
 
-  void launch_kick_drift(State &state, Real half, Real dt, Report *out) {
+  void launch_kick_drift(State &state, Real half, Real dt, PassReport *out) {
     const engine::KickDrift<Real> k = kick_view(state, half, dt);
     if (n_ == 0) return;
     engine::with_flags(
@@ -382,7 +382,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
         },
         k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
   }
-  void launch_kick_check(State &state, Real half, Real limit2, Report *out) {
+  void launch_kick_check(State &state, Real half, Real limit2, PassReport *out) {
     const engine::KickDrift<Real> k = kick_view(state, half, Real(state.dt));
     if (n_ == 0) return;
     engine::with_flags(
@@ -399,7 +399,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     return a;
   }
 
-  void launch_deep(State &state, Report *out) {
+  void launch_deep(State &state, PassReport *out) {
     if (n_ == 0) return;
     auto &p = state.particles;
     const Real limit = Real(state.settings.overlap_limit);
@@ -570,7 +570,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   DeviceArray<Real> hist_, old_hist_, scratch_real_;
   DeviceArray<std::uint32_t> cell_, cell_sorted_, perm_in_, perm_, counts_, cell_start_, scratch_index_;
   DeviceArray<unsigned char> temp_;
-  DeviceArray<Report> report_;
+  DeviceArray<PassReport> report_;
   DeviceArray<Bounds> bounds_;
   engine::CellGrid<Real> grid_;
 };

@@ -33,13 +33,13 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-struct Field {
+struct CsvField {
   std::string_view text;
   std::size_t column;  // 1-based character position
 };
 
-std::vector<Field> split(std::string_view line) {
-  std::vector<Field> out;
+std::vector<CsvField> split(std::string_view line) {
+  std::vector<CsvField> out;
   std::size_t begin = 0;
   while (true) {
     const std::size_t comma = line.find(',', begin);

@@ -13,9 +13,9 @@ namespace {
 // Uniform cells of at least the largest diameter over the region (x, y fixed; z grows with the
 // top), each listing the spheres whose centre lies in it: two spheres can only overlap when their
 // cells are neighbours.
-class CellGrid {
+class PlacementGrid {
  public:
-  CellGrid(const Box &region, bool periodic_y, double cell, double top)
+  PlacementGrid(const Box &region, bool periodic_y, double cell, double top)
       : x0_(region.lo[0]),
         y0_(region.lo[1]),
         z0_(region.lo[2]),
@@ -145,7 +145,7 @@ Heap insert_heap(const HeapSpec &spec) {
   heap.y.reserve(n);
   heap.z.reserve(n);
   heap.r.reserve(n);
-  CellGrid grid(box, spec.periodic_y, largest, heap.top);
+  PlacementGrid grid(box, spec.periodic_y, largest, heap.top);
 
   auto grow = [&](std::size_t placed, double r) {
     if (heap.top >= spec.max_top) {

@@ -96,7 +96,7 @@ inline ParityInput two_output_parity() {
   ParityInput p;
   for (bool rough : {false, true}) {
     ParityPanel panel;
-    panel.quantity = rough ? Quantity{"R_q", "m"} : Quantity{"V_s", "m^2/s"};
+    panel.quantity = rough ? PlottedQuantity{"R_q", "m"} : PlottedQuantity{"V_s", "m^2/s"};
     for (const auto& d : design(rough)) {
       const double truth = d.value, predicted = rough ? rq_model(d.u, d.omega) : vs_model(d.u, d.omega);
       (d.test ? panel.test_simulated : panel.train_simulated).push_back(truth);

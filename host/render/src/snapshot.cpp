@@ -92,7 +92,7 @@ vtkSmartPointer<vtkActor> particles_actor(const SnapshotInput& in, double speed_
   return actor;
 }
 
-vtkSmartPointer<vtkActor> substrate_actor(const Box& d) {
+vtkSmartPointer<vtkActor> substrate_actor(const DomainBox& d) {
   const double mx = 0.04 * (d.hi[0] - d.lo[0]), my = 0.3 * (d.hi[1] - d.lo[1]);
   vtkNew<vtkPlaneSource> plane;
   plane->SetOrigin((d.lo[0] - mx) * mm, (d.lo[1] - my) * mm, d.lo[2] * mm);
@@ -107,7 +107,7 @@ vtkSmartPointer<vtkActor> substrate_actor(const Box& d) {
   return actor;
 }
 
-vtkSmartPointer<vtkActor> outline_actor(const Box& d) {
+vtkSmartPointer<vtkActor> outline_actor(const DomainBox& d) {
   vtkNew<vtkOutlineSource> box;
   box->SetBounds(d.lo[0] * mm, d.hi[0] * mm, d.lo[1] * mm, d.hi[1] * mm, d.lo[2] * mm, d.hi[2] * mm);
   vtkNew<vtkPolyDataMapper> mapper;
@@ -145,7 +145,7 @@ void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, 
 
   // Oblique camera from the front (-y) left (-x) and above, looking at the domain's centre,
   // fitted to the domain box so that every figure of a run is framed alike.
-  const Box& d = in.domain;
+  const DomainBox& d = in.domain;
   const double cx = 0.5 * (d.lo[0] + d.hi[0]) * mm, cy = 0.5 * (d.lo[1] + d.hi[1]) * mm;
   const double lx = (d.hi[0] - d.lo[0]) * mm;
   double top = d.lo[2] * mm;

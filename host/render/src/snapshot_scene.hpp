@@ -24,7 +24,7 @@ void render_snapshot(const SnapshotInput& in, const std::filesystem::path& png, 
 
 // The spreader's body (its outline extruded along y, clipped to the domain's y extent; a stripe and
 // a spoke showing its angle when it turns), in millimetres.
-std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderShape& spreader, const Box& domain);
+std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderShape& spreader, const DomainBox& domain);
 // Height of the body's highest point, as placed and turned [m].
 double spreader_top(const SpreaderShape& spreader);
 

@@ -42,7 +42,7 @@ vtkSmartPointer<vtkActor> actor_of(vtkAlgorithmOutput* port, bool cell_colours) 
   return a;
 }
 
-std::pair<double, double> y_extent(const SpreaderShape& s, const Box& d) {
+std::pair<double, double> y_extent(const SpreaderShape& s, const DomainBox& d) {
   if (!(s.length > 0)) return {d.lo[1], d.hi[1]};
   return {std::max(s.y_centre - 0.5 * s.length, d.lo[1]), std::min(s.y_centre + 0.5 * s.length, d.hi[1])};
 }
@@ -89,7 +89,7 @@ double largest_extent(const SpreaderShape& s) {
 }
 }  // namespace
 
-std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderShape& s, const Box& d) {
+std::vector<vtkSmartPointer<vtkActor>> spreader_actors(const SpreaderShape& s, const DomainBox& d) {
   if (s.outline_x.empty()) return {};
   if (s.outline_x.size() < 3 || s.outline_x.size() != s.outline_z.size())
     throw RenderError("render: a spreader's outline needs at least 3 vertices, with as many x as z");

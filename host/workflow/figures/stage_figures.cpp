@@ -132,7 +132,7 @@ PlaneGrid plane(const analysis::GridMap &g) {
   return p;
 }
 
-render::Quantity quantity(const std::string &name, const std::string &unit) {
+render::PlottedQuantity quantity(const std::string &name, const std::string &unit) {
   if (name == "vs") return {"V_s", unit.empty() ? "m^2/s" : unit};
   if (name == "rq") return {"R_q", unit.empty() ? "m" : unit};
   return {name, unit};

@@ -11,6 +11,7 @@
 #include "workflow/map/mapping.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/stage.hpp"
+#include "workflow/stage_table.hpp"
 #include "workflow/train/train_config.hpp"
 
 namespace spreadmap {

@@ -39,7 +39,7 @@ struct Point {
 };
 
 // One axis of the grid: its first coordinate, spacing and count, from the points' coordinates.
-struct Axis {
+struct GridAxis {
   double first = 0, spacing = 0;
   std::size_t n = 0;
   // The grid index of `v`, or nullopt when v is off the grid by more than grid_tolerance.
@@ -51,13 +51,13 @@ struct Axis {
 };
 
 // The distinct values (within a millionth of the range) give the count; first and last the spacing.
-Axis axis_of(std::vector<double> v) {
+GridAxis axis_of(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const double merge = (v.back() - v.front()) * 1e-6;
   std::size_t distinct = 1;
   for (std::size_t i = 1; i < v.size(); ++i)
     if (v[i] - v[i - 1] > merge) ++distinct;
-  Axis a;
+  GridAxis a;
   a.first = v.front();
   a.n = distinct;
   a.spacing = distinct > 1 ? (v.back() - v.front()) / double(distinct - 1) : 0;
@@ -157,7 +157,7 @@ std::vector<Point> height_points(const analysis::Table &table, const HeightColum
 
 // The points placed on the grid of the axes; a point off the grid or given twice, or a grid point
 // missing, is refused.
-scene::HeightField grid_of_points(const std::vector<Point> &points, const Axis &ax, const Axis &ay,
+scene::HeightField grid_of_points(const std::vector<Point> &points, const GridAxis &ax, const GridAxis &ay,
                                   const std::string &path, Refusals &refuse) {
   scene::HeightField map{ax.n, ay.n, ax.spacing, ay.spacing, std::vector<double>(ax.n * ay.n)};
   std::vector<int> line_of(map.h.size(), 0);
@@ -213,7 +213,7 @@ std::optional<scene::HeightField> parse_height_map(const std::string &text, cons
 
   std::vector<double> xs, ys;
   for (const auto &p : points) xs.push_back(p.x), ys.push_back(p.y);
-  const Axis ax = axis_of(xs), ay = axis_of(ys);
+  const GridAxis ax = axis_of(xs), ay = axis_of(ys);
   if (ax.n < 2 || ay.n < 2) {
     diag.error(Location{path}, key,
                fmt::format("the points span {} x {} distinct positions; a grid needs at least 2 x 2", ax.n, ay.n),

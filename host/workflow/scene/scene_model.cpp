@@ -24,7 +24,7 @@ void fields(S &s, F &&f) {
 }
 
 template <class D, class F>
-requires std::same_as<std::remove_const_t<D>, Domain>
+requires std::same_as<std::remove_const_t<D>, SpreadingBox>
 void fields(D &d, F &&f) {
   f("length", d.length);
   f("width", d.width);
@@ -110,9 +110,9 @@ template <class T> json written(const T &section) {
 }
 
 // Reads the keys of one JSON object into typed fields; every problem names the source and the key.
-class Reader {
+class JsonReader {
  public:
-  Reader(const json &in, std::string source, std::string path)
+  JsonReader(const json &in, std::string source, std::string path)
       : in_(in), source_(std::move(source)), path_(std::move(path)) {
     if (!in_.is_object()) fail(path_, "expected an object, found " + std::string(in_.type_name()));
   }
@@ -140,9 +140,9 @@ class Reader {
     return need(key, in_.contains(key) && at(key).is_object(), "an object of parameters");
   }
   bool has(const char *key) const { return in_.contains(key); }
-  Reader section(const char *key) {
+  JsonReader section(const char *key) {
     need(key, in_.contains(key), "an object");
-    return Reader(at(key), source_, path_ + "." + key);
+    return JsonReader(at(key), source_, path_ + "." + key);
   }
   // After every known key was read: a key nothing reads is refused rather than dropped.
   void no_other_keys() const {
@@ -169,8 +169,8 @@ class Reader {
   std::set<std::string> seen_;
 };
 
-template <class T> T read_section(Reader &parent, const char *key) {
-  Reader r = parent.section(key);
+template <class T> T read_section(JsonReader &parent, const char *key) {
+  JsonReader r = parent.section(key);
   T out;
   fields(out, r);
   r.no_other_keys();
@@ -197,21 +197,21 @@ json to_json(const Scene &s) {
 
 Scene scene_from_json(const json &in, const std::string &source) {
   Scene s;
-  Reader top(in, source, "scene");
+  JsonReader top(in, source, "scene");
   fields(s, top);
-  s.domain = read_section<Domain>(top, "domain");
+  s.domain = read_section<SpreadingBox>(top, "domain");
   s.powder = read_section<Powder>(top, "powder");
   s.time = read_section<TimeSettings>(top, "time");
-  Reader contact = top.section("contact");
+  JsonReader contact = top.section("contact");
   contact("use", s.contact.use);
   s.contact.params = contact.object("params");
   contact.no_other_keys();
-  Reader substrate = top.section("substrate");
+  JsonReader substrate = top.section("substrate");
   s.substrate.law = substrate.object("law");
   if (substrate.has("roughness")) s.substrate.roughness = read_section<Roughness>(substrate, "roughness");
   if (substrate.has("height_map")) s.substrate.height_map = read_section<HeightMap>(substrate, "height_map");
   substrate.no_other_keys();
-  Reader spreader = top.section("spreader");
+  JsonReader spreader = top.section("spreader");
   spreader("use", s.spreader.use);
   s.spreader.params = spreader.object("params");
   s.spreader.law = spreader.object("law");
@@ -239,7 +239,7 @@ void set_host_key(Scene &scene, const std::string &section, const std::string &k
   bool found = false;
   const json one = {{key, value}};
   const std::string path = section.empty() ? "scene" : "scene." + section;
-  Reader reader(one, "a value set on the scene", path);
+  JsonReader reader(one, "a value set on the scene", path);
   auto set = [&](const char *name, auto &field) {
     if (key != name) return;
     reader(name, field);

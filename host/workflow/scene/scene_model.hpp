@@ -13,7 +13,7 @@
 
 namespace spreadmap {
 
-struct Domain {
+struct SpreadingBox {
   double length = 0, width = 0, height = 0;  // m, from the origin
   bool periodic_x = false, periodic_y = true;
 };
@@ -99,7 +99,7 @@ struct Scene {
   std::int64_t threads = 0;      // 0 = all cores
   bool deterministic = true;
   double gravity = 9.81;  // m/s^2 along -z
-  Domain domain;
+  SpreadingBox domain;
   Powder powder;
   TimeSettings time;
   PluginChoice contact;  // particle-particle law

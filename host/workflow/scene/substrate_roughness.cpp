@@ -79,7 +79,7 @@ struct SubstrateSection {
 // The lattice fits the domain: spheres smaller than it, a correlation length the lattice can carry and
 // the domain can hold, and not too many spheres. False when one of these is reported.
 bool substrate_lattice_fits(const Scene &scene, bool measured, const SubstrateSection &section, Diagnostics &diag) {
-  const Domain &domain = scene.domain;
+  const SpreadingBox &domain = scene.domain;
   const double d = substrate_sphere_diameter(scene);
   const bool given_diameter =
       measured ? scene.substrate.height_map->sphere_diameter > 0 : scene.substrate.roughness->sphere_diameter > 0;
@@ -122,7 +122,7 @@ bool substrate_lattice_fits(const Scene &scene, bool measured, const SubstrateSe
 // fed on top within the domain's height.
 void check_room_above_substrate(const Scene &scene, const scene::RoughSubstrate &substrate, bool measured,
                                 const char *name, const SubstrateSection &section, Diagnostics &diag) {
-  const Domain &domain = scene.domain;
+  const SpreadingBox &domain = scene.domain;
   const double peak = highest_top(substrate), above_mean = peak - substrate.mean_top;
   const auto &gap = scene.spreader.params.contains("gap") ? scene.spreader.params["gap"] : nlohmann::json();
   if (!gap.is_number()) {

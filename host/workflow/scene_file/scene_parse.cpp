@@ -93,7 +93,7 @@ std::vector<std::string> names_of(const SchemaView &s) {
 }
 
 // The context every reader shares: the file, the diagnostics.
-struct Reader {
+struct ParseContext {
   std::string file;
   Diagnostics &diag;
 
@@ -139,7 +139,7 @@ struct Reader {
   }
 };
 
-void read_domain(const Reader &r, const YAML::Node &node, SceneFile &s) {
+void read_domain(const ParseContext &r, const YAML::Node &node, SceneFile &s) {
   if (!node) {
     r.diag.error(r.at(node), "domain", "required section missing",
                  "add domain: {lo: [x, y, z], hi: [x, y, z]} (the box the particles live in)");
@@ -175,7 +175,7 @@ void read_domain(const Reader &r, const YAML::Node &node, SceneFile &s) {
   }
 }
 
-void read_gravity(const Reader &r, const YAML::Node &node, SceneFile &s) {
+void read_gravity(const ParseContext &r, const YAML::Node &node, SceneFile &s) {
   if (!node) return;
   if (node.IsScalar() && (lower(node.Scalar()) == "off" || lower(node.Scalar()) == "false")) {
     s.gravity = {0, 0, 0};
@@ -191,7 +191,7 @@ void read_gravity(const Reader &r, const YAML::Node &node, SceneFile &s) {
 
 // The plugin a section names with `use:` (the section `key`, e.g. contact or walls[1].spreader), or
 // null with the problem reported: `use` missing (and a misspelt key that is likely it), or no such plugin.
-const LoadedPlugin *named_plugin(const Reader &r, const YAML::Node &node, const std::string &kind,
+const LoadedPlugin *named_plugin(const ParseContext &r, const YAML::Node &node, const std::string &kind,
                                  const std::string &key, PluginRegistry &registry, const std::string &fix) {
   if (!node["use"] || !node["use"].IsScalar()) {
     r.diag.error(r.at(node), key + ".use", "required value missing", fix);
@@ -211,7 +211,7 @@ const LoadedPlugin *named_plugin(const Reader &r, const YAML::Node &node, const 
 }
 
 // The contact law's schema, or null when the plugin cannot be loaded (reported).
-const LoadedPlugin *read_contact(const Reader &r, const YAML::Node &node, PluginRegistry &registry, SceneFile &s) {
+const LoadedPlugin *read_contact(const ParseContext &r, const YAML::Node &node, PluginRegistry &registry, SceneFile &s) {
   if (!node || !node.IsMap()) {
     r.diag.error(r.at(node), "contact", node ? "expected a mapping: {use: NAME, ...}" : "required section missing",
                  "add contact: {use: hooke_slider, ...}; spreadmap plugins --kind contact lists the laws");
@@ -225,7 +225,7 @@ const LoadedPlugin *read_contact(const Reader &r, const YAML::Node &node, Plugin
   return law;
 }
 
-void read_particles(const Reader &r, const YAML::Node &node, const fs::path &dir, SceneFile &s) {
+void read_particles(const ParseContext &r, const YAML::Node &node, const fs::path &dir, SceneFile &s) {
   ParticleSource &p = s.particles;
   p.where = r.at(node);
   if (!node || !node.IsMap()) {
@@ -278,7 +278,7 @@ void read_particles(const Reader &r, const YAML::Node &node, const fs::path &dir
 
 // A spreader wall's plugin and its parameters (`spreader: {use: NAME, ...}`), checked by the plugin's
 // schema and its own cross-checks.
-void read_spreader(const Reader &r, const YAML::Node &wall, const std::string &path, PluginRegistry &registry,
+void read_spreader(const ParseContext &r, const YAML::Node &wall, const std::string &path, PluginRegistry &registry,
                    const engine::Domain &domain, SpreaderWall &out) {
   const std::string at = path + ".spreader";
   const YAML::Node node = wall["spreader"];
@@ -316,7 +316,7 @@ std::string wall_label(const WallSpec &w, std::size_t k) {
 // One wall's keys as written: those its type requires, and those of the other wall types (refused, so
 // that a typo in `type` is not silently another wall).
 struct WallKeys {
-  const Reader &r;
+  const ParseContext &r;
   const YAML::Node &w;
   const std::string &path;
   const std::string &type;
@@ -345,7 +345,7 @@ void read_spreader_wall(const WallKeys &keys, PluginRegistry &registry, const en
 }
 
 void read_plane_wall(const WallKeys &keys, WallSpec &spec) {
-  const Reader &r = keys.r;
+  const ParseContext &r = keys.r;
   const YAML::Node &w = keys.w;
   keys.refuse_foreign({"lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
   if (keys.need("point", "add point: [x, y, z] (m), a point of the plane"))
@@ -355,7 +355,7 @@ void read_plane_wall(const WallKeys &keys, WallSpec &spec) {
 }
 
 void read_box_wall(const WallKeys &keys, WallSpec &spec) {
-  const Reader &r = keys.r;
+  const ParseContext &r = keys.r;
   const YAML::Node &w = keys.w;
   const std::string &path = keys.path;
   keys.refuse_foreign({"point", "normal", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
@@ -375,7 +375,7 @@ void read_box_wall(const WallKeys &keys, WallSpec &spec) {
 
 // `v`: the wall's host keys as validated (radius, height, inside and omega with their defaults).
 void read_cylinder_wall(const WallKeys &keys, const nlohmann::json &v, WallSpec &spec) {
-  const Reader &r = keys.r;
+  const ParseContext &r = keys.r;
   const YAML::Node &w = keys.w;
   const std::string &path = keys.path;
   keys.refuse_foreign({"point", "normal", "lo", "hi", "open_top", "spreader"});
@@ -401,7 +401,7 @@ void read_cylinder_wall(const WallKeys &keys, const nlohmann::json &v, WallSpec 
 }
 
 // The wall's law: the particle-particle values with this wall's overrides (its keys of the law).
-nlohmann::json wall_law_with_overrides(const Reader &r, const YAML::Node &w, const std::string &path,
+nlohmann::json wall_law_with_overrides(const ParseContext &r, const YAML::Node &w, const std::string &path,
                                        const LoadedPlugin *law, const std::set<std::string> &law_keys,
                                        const nlohmann::json &pair_law) {
   nlohmann::json out = pair_law;
@@ -417,7 +417,7 @@ nlohmann::json wall_law_with_overrides(const Reader &r, const YAML::Node &w, con
 
 // walls[k]: its host keys, the keys of its type, and its law; nullopt when it is no mapping or has no
 // valid type (reported).
-std::optional<WallSpec> read_wall(const Reader &r, const YAML::Node &w, std::size_t k, const LoadedPlugin *law,
+std::optional<WallSpec> read_wall(const ParseContext &r, const YAML::Node &w, std::size_t k, const LoadedPlugin *law,
                                   const std::set<std::string> &law_keys, PluginRegistry &registry, const SceneFile &s) {
   const std::string path = fmt::format("walls[{}]", k);
   WallSpec spec;
@@ -460,7 +460,7 @@ std::optional<WallSpec> read_wall(const Reader &r, const YAML::Node &w, std::siz
   return spec;
 }
 
-void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law, PluginRegistry &registry,
+void read_walls(const ParseContext &r, const YAML::Node &node, const LoadedPlugin *law, PluginRegistry &registry,
                 SceneFile &s) {
   if (!node) return;
   if (!node.IsSequence()) {
@@ -481,7 +481,7 @@ void read_walls(const Reader &r, const YAML::Node &node, const LoadedPlugin *law
   }
 }
 
-void read_run(const Reader &r, const YAML::Node &node, SceneFile &s) {
+void read_run(const ParseContext &r, const YAML::Node &node, SceneFile &s) {
   if (!node) {
     r.diag.error(r.at(node), "run", "required section missing", "add run: {duration: 0.5 s}");
     return;
@@ -535,7 +535,7 @@ bool is_scene_document(const YAML::Node &root) { return root.IsMap() && !root["s
 
 std::optional<SceneFile> parse_scene(const fs::path &file, const YAML::Node &root, PluginRegistry &registry,
                                      Diagnostics &diag) {
-  const Reader r{file.string(), diag};
+  const ParseContext r{file.string(), diag};
   SceneFile s;
   s.file = file;
   if (!root.IsMap()) {

@@ -139,7 +139,7 @@ ParticleSet settle_scene(const scene_file::LoadedScene &settling, PluginRegistry
 }  // namespace
 
 engine::Domain make_domain(const Scene &scene) {
-  const Domain &d = scene.domain;
+  const SpreadingBox &d = scene.domain;
   engine::Domain dom;
   dom.lo = {0, 0, 0};
   dom.hi = {d.length, d.width, d.height};

@@ -31,7 +31,7 @@ struct Options {
 };
 
 // Axis-aligned box [lo, hi] in metres.
-struct Box {
+struct DomainBox {
   std::array<double, 3> lo{0, 0, 0};
   std::array<double, 3> hi{0, 0, 0};
 };
@@ -54,7 +54,7 @@ struct SpreaderShape {
 struct SnapshotInput {
   std::vector<double> x, y, z, r;  // particle centres and radii [m]
   std::vector<double> speed;       // [m/s], coloured (drawn in mm/s)
-  Box domain;                      // the substrate is drawn at z = domain.lo[2]
+  DomainBox domain;                      // the substrate is drawn at z = domain.lo[2]
   SpreaderShape spreader;
   double speed_max = 0;  // colour-bar top [m/s]; 0 = largest speed in the input
 };
@@ -70,7 +70,7 @@ struct HeightmapInput {
 
 // A quantity over the (U, omega) plane. `unit` is the SI unit: "m^2/s" (drawn mm^2/s), "m" (um),
 // "m/s" (mm/s) or anything else (drawn as given).
-struct Quantity {
+struct PlottedQuantity {
   std::string name;  // "V_s", "R_q"
   std::string unit;  // SI
 };
@@ -82,14 +82,14 @@ struct DesignPoint {
 
 // values[iw * u.size() + iu] is the prediction at (u[iu], omega[iw]).
 struct SurfaceInput {
-  Quantity quantity;
+  PlottedQuantity quantity;
   std::vector<double> u, omega;  // grid axes, increasing [m/s], [rad/s]
   std::vector<double> values;
   std::vector<DesignPoint> points;  // simulated cases
 };
 
 struct ParityPanel {
-  Quantity quantity;
+  PlottedQuantity quantity;
   std::vector<double> train_simulated, train_predicted;  // SI
   std::vector<double> test_simulated, test_predicted;    // SI
   std::vector<double> cv_simulated, cv_predicted;        // SI, out-of-fold predictions of cross-validation
@@ -104,7 +104,7 @@ struct MapPoint {
   double u = 0, omega = 0;  // [m/s], [rad/s]
 };
 
-struct Optimum {
+struct OptimumMark {
   bool found = false;
   double u = 0, omega = 0;  // [m/s], [rad/s]
   double vs = 0, rq = 0;    // [m^2/s], [m]
@@ -123,7 +123,7 @@ struct MapInput {
   std::vector<double> rq_levels, vs_levels, std_levels;  // SI
   std::vector<MapPoint> frontier;                        // efficient operating line
   std::vector<MapPoint> cases;                           // the simulated settings the model was trained on
-  Optimum optimum;
+  OptimumMark optimum;
   double rq_target = 0;  // [m], shown in the optimum label when > 0
   // Maps that cannot be trusted: drawn grey, and `notes` (one line each) printed over the plot.
   bool rq_greyed = false, vs_greyed = false;
