@@ -35,10 +35,11 @@
 #include "analysis/summary.hpp"
 #include "core/registry.hpp"
 #include "core/schema.hpp"
-#include "workflow/simulate/case_setup.hpp"
+#include "workflow/stage_table.hpp"
+#include "workflow/scene/case_setup.hpp"
 #include "workflow/characterise/layer_eval.hpp"
 #include "workflow/scene/scene_section.hpp"
-#include "workflow/workflow.hpp"
+#include "workflow/file/workflow.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;
@@ -162,7 +163,7 @@ int main(int argc, char **argv) {
   sm::PluginRegistry registry(sm::PluginRegistry::default_roots());
   const fs::path workflow = fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml";
   sm::Diagnostics diag;
-  const auto resolved = sm::resolve_scene(sm::load_workflow(workflow), registry, diag);
+  const auto resolved = sm::resolve_scene(sm::load_workflow(workflow, sm::stage_names()), registry, diag);
   diag.throw_if_any();
   sm::Scene scene = *resolved;
   scene.spreader.params["U"] = 0.1;

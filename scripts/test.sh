@@ -1,6 +1,6 @@
 #!/bin/sh
-# The whole test suite from a fresh clone: installs what is missing, builds the release tree and
-# runs every test, then builds the AddressSanitizer+UBSan tree and runs the unit, extremes and
+# The whole test suite from a fresh clone: installs what is missing, checks the source layout
+# (scripts/check_layout.py), builds the release tree and runs every test, then builds the AddressSanitizer+UBSan tree and runs the unit, extremes and
 # workflow tests under it. Tests labelled manual (run by hand) are left out, and so are those labelled
 # gpu where no GPU is present (it says which).
 set -eu
@@ -8,6 +8,9 @@ cd "$(dirname "$0")/.."
 jobs="${SPREADMAP_BUILD_JOBS:-2}"
 
 scripts/setup.sh --tests
+
+echo "== layout: no include cycle between host/'s folders, no function over 80 lines in host/workflow/, no two files or types of one name"
+python3 scripts/check_layout.py
 
 # The CUDA kernels compile here whenever nvcc is present, GPU or not (AUTO leaves them out without a GPU).
 cuda=AUTO

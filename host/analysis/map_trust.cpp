@@ -46,4 +46,13 @@ std::vector<MapTrust> judge_map_trust(const ModelFile &model) {
   return out;
 }
 
+std::vector<std::string> trust_notes(const std::vector<MapTrust> &trust) {
+  std::vector<std::string> notes;
+  for (const auto &t : trust)
+    if (t.untrusted() && (t.output == "vs" || t.output == "rq"))
+      notes.push_back(fmt::format("{} map NOT TRUSTED: cross-validated Q^2 = {:.2f} < {:.2f}",
+                                  t.output == "rq" ? "R_q" : "V_s", t.q2_cv, min_trusted_q2_cv));
+  return notes;
+}
+
 }  // namespace spreadmap::analysis

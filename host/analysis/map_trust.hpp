@@ -30,5 +30,7 @@ struct MapTrust {
 // One verdict per output of the model, in its order. A model trained without cross-validation (or
 // written before q2_cv was recorded) gets `unknown`, with the reason.
 std::vector<MapTrust> judge_map_trust(const ModelFile &model);
+// One line for each map (V_s, R_q) that cannot be trusted, for the figure and the log.
+std::vector<std::string> trust_notes(const std::vector<MapTrust> &trust);
 
 }  // namespace spreadmap::analysis

@@ -10,7 +10,7 @@
 #include "core/registry.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
-#include "workflow/command_line.hpp"
+#include "workflow/stage/command_line.hpp"
 
 namespace spreadmap::cli {
 

@@ -2,12 +2,14 @@
 #include <boost/program_options.hpp>
 #include <cstdlib>
 
+#include "workflow/runner.hpp"
 #include "cli/program_commands.hpp"
 #include "cluster/cluster_run.hpp"
 #include "core/error.hpp"
 #include "core/suggest.hpp"
-#include "workflow/command_line.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/command_line.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/scene/scene_model.hpp"
 #include "workflow/stage_table.hpp"
 
 namespace spreadmap::cli {

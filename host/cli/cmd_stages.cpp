@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
-#include "workflow/command_line.hpp"
+#include "workflow/stage/command_line.hpp"
 
 namespace spreadmap::cli {
 namespace {

@@ -2,12 +2,15 @@
 #include <boost/program_options.hpp>
 #include <iostream>
 
+#include "workflow/runner.hpp"
 #include "cli/program_commands.hpp"
 #include "core/error.hpp"
 #include "workflow/calibrate/calibration_file.hpp"
-#include "workflow/command_line.hpp"
+#include "workflow/stage/command_line.hpp"
 #include "workflow/scene_file/scene_build.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
 
 namespace spreadmap::cli {
 

@@ -3,7 +3,7 @@
 #include <fmt/format.h>
 
 #include "cli/program_commands.hpp"
-#include "workflow/commands.hpp"
+#include "workflow/stage/commands.hpp"
 
 namespace spreadmap::cli {
 

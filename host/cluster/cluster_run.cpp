@@ -1,3 +1,4 @@
+#include "workflow/runner.hpp"
 #include "cluster/cluster_run.hpp"
 
 #include "cluster/slurm_executor.hpp"

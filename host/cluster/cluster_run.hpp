@@ -5,8 +5,10 @@
 #include <string>
 #include <vector>
 
+#include "workflow/runner.hpp"
 #include "core/registry.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/scene/scene_model.hpp"
 
 namespace spreadmap::cluster {
 

@@ -7,7 +7,7 @@ namespace spreadmap::cluster {
 
 std::string heap_key(const CaseJob &job, PluginRegistry &registry) { return heap_hash(job.request.scene, registry); }
 
-// The file name workflow/simulate/heap_cache.cpp gives a settled heap. Were it ever to change, a case would only
+// The file name workflow/cases/heap_cache.cpp gives a settled heap. Were it ever to change, a case would only
 // wait for its heap's first case needlessly; nothing would be computed wrongly.
 bool heap_ready(const CaseJob &job, PluginRegistry &registry) {
   std::error_code ec;

@@ -1,5 +1,5 @@
 // Cases with the same powder, domain, contacts and spreader position share one settled heap
-// (workflow/simulate/case_runner.hpp): the first of them settles it into heaps/, the others read it. Cases
+// (workflow/cases/case_runner.hpp): the first of them settles it into heaps/, the others read it. Cases
 // in different processes cannot share the in-process lock that orders this on one machine, so the
 // executors order it themselves: a case whose heap another rank is settling waits for it, rather
 // than settling the same heap again at the same time.

@@ -7,7 +7,8 @@
 
 #include "cluster/mpi_session.hpp"
 #include "workflow/executors/executor_hook.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/scene/scene_model.hpp"
 
 namespace spreadmap::cluster {
 

@@ -1,5 +1,6 @@
 // --executor mpi in a build with MPI: every rank starts here; rank 0 runs the workflow, handing the
 // cases out, and the others serve cases until it lets them go.
+#include "workflow/runner.hpp"
 #include "cluster/cluster_run.hpp"
 #include "cluster/mpi_dispatcher.hpp"
 #include "cluster/mpi_worker.hpp"

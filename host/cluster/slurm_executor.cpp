@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "cluster/heap_order.hpp"
+#include "workflow/run/run_dir.hpp"
 #include "cluster/slurm_script.hpp"
 #include "core/error.hpp"
 #include "core/suggest.hpp"

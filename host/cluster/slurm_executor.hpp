@@ -4,7 +4,8 @@
 // otherwise submit.sh runs (sbatch) and its job ids are printed. Nothing is computed here.
 #pragma once
 #include "workflow/executors/executor_hook.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/scene/scene_model.hpp"
 
 namespace spreadmap::cluster {
 

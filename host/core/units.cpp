@@ -1,5 +1,7 @@
 #include "core/units.hpp"
 
+#include <fmt/format.h>
+
 #include <cctype>
 #include <cmath>
 #include <map>
@@ -195,6 +197,15 @@ double parse_in(const std::string &text, const std::string &si_unit) {
     throw std::invalid_argument("'" + text + "' has the dimension of " + q.unit.dim.str() + ", expected " +
                                 target->dim.str() + " (a value in " + si_unit + ")");
   return q.value / target->to_si(1.0);
+}
+
+std::string display(double v, const std::string &unit) {
+  if (unit == "m^2/s") return fmt::format("{:.4g} mm^2/s", v * 1e6);
+  if (unit == "m/s") return fmt::format("{:.4g} mm/s", v * 1e3);
+  if (unit == "m") return fmt::format("{:.4g} um", v * 1e6);
+  if (unit == "rad/s") return fmt::format("{:.4g} rad/s", v);
+  if (unit.empty() || unit == "-" || unit == "1") return fmt::format("{:.4g}", v);
+  return fmt::format("{:.4g} {}", v, unit);
 }
 
 }  // namespace spreadmap

@@ -41,4 +41,8 @@ Quantity parse_quantity(const std::string &text);
 // are taken as SI. Throws std::invalid_argument naming both units on a dimension mismatch.
 double parse_in(const std::string &text, const std::string &si_unit);
 
+// A value with its SI unit in the form spreading is read in: 3.3e-05 m^2/s -> "33 mm^2/s",
+// 1.1e-4 m -> "110 um" (4 significant digits).
+std::string display(double value, const std::string &unit);
+
 }  // namespace spreadmap

@@ -13,7 +13,7 @@
 // Scenes use it through `scene.substrate.roughness` (workflow/scene/substrate_roughness.hpp): the
 // spheres are fixed particles over the plate (so the case steps on the CPU; backend: cuda is
 // refused), the first heap is fed onto them as a later layer's is fed onto the bed, the spreader's gap
-// and the layer's heights are measured from mean_top (workflow/simulate/layer_feed.hpp), state.vtp
+// and the layer's heights are measured from mean_top (workflow/scene/layer_feed.hpp), state.vtp
 // keeps the spheres fixed (its "fixed" column) and the layer metrics take them as ground, not
 // layer (sm_layer_input_v1::substrate).
 #pragma once

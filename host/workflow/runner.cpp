@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "workflow/runner.hpp"
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/suggest.hpp"
@@ -10,7 +11,9 @@
 #include "workflow/report/run_report.hpp"
 #include "workflow/run/run_lock.hpp"
 #include "workflow/scene/scene_section.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
 #include "workflow/stage_table.hpp"
 
 namespace spreadmap {
@@ -32,7 +35,7 @@ static bool needs_scene(const Workflow &wf) {
 }
 
 Validated validate_workflow(const fs::path &file, PluginRegistry &registry) {
-  Validated v{load_workflow(file), {}, {}};
+  Validated v{load_workflow(file, stage_names()), {}, {}};
   Diagnostics diag;
   if (needs_scene(v.wf) || v.wf.root["scene"]) v.scene = resolve_scene(v.wf, registry, diag);
   for (auto &entry : v.wf.stages) {

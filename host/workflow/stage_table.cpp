@@ -1,15 +1,13 @@
 #include "workflow/stage_table.hpp"
 
 #include "core/diagnostics.hpp"
-#include "workflow/commands.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/commands.hpp"
+#include "workflow/stage/stage.hpp"
 
 namespace spreadmap {
 
 std::unique_ptr<Stage> make_calibrate_stage();
 std::unique_ptr<Stage> make_simulate_stage();
-std::unique_ptr<Stage> make_train_stage();
-std::unique_ptr<Stage> make_map_stage();
 std::unique_ptr<Stage> make_verify_stage();
 std::unique_ptr<Stage> make_tradeoff_stage();
 SchemaView calibrate_settings();
@@ -54,26 +52,6 @@ std::vector<std::string> stage_names() {
   std::vector<std::string> out;
   for (const auto &s : stage_table()) out.push_back(s.name);
   return out;
-}
-
-double setting_number(const nlohmann::json &settings, const char *key, double fallback) {
-  const auto it = settings.find(key);
-  return it != settings.end() && it->is_number() ? it->get<double>() : fallback;
-}
-
-std::size_t setting_count(const nlohmann::json &settings, const char *key, std::size_t fallback) {
-  const auto it = settings.find(key);
-  return it != settings.end() && it->is_number_integer() && it->get<long>() >= 0 ? it->get<std::size_t>() : fallback;
-}
-
-bool setting_flag(const nlohmann::json &settings, const char *key, bool fallback) {
-  const auto it = settings.find(key);
-  return it != settings.end() && it->is_boolean() ? it->get<bool>() : fallback;
-}
-
-std::string setting_text(const nlohmann::json &settings, const char *key, const std::string &fallback) {
-  const auto it = settings.find(key);
-  return it != settings.end() && it->is_string() ? it->get<std::string>() : fallback;
 }
 
 nlohmann::json check_stage_settings(const StageInfo &info, const YAML::Node &config, const std::string &file,

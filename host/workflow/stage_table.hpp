@@ -42,12 +42,6 @@ const std::vector<StageInfo> &stage_table();
 const StageInfo *find_stage(const std::string &name);
 std::vector<std::string> stage_names();
 
-// A checked setting (StageEntry::settings), or `fallback` where its value was refused.
-double setting_number(const nlohmann::json &settings, const char *key, double fallback);
-std::size_t setting_count(const nlohmann::json &settings, const char *key, std::size_t fallback);
-bool setting_flag(const nlohmann::json &settings, const char *key, bool fallback);
-std::string setting_text(const nlohmann::json &settings, const char *key, const std::string &fallback = "");
-
 // The settings of one stage entry, checked against its row: every key of `settings` present (its
 // default when not given), numbers in SI, tables as JSON; problems go to `diag`.
 nlohmann::json check_stage_settings(const StageInfo &info, const YAML::Node &config, const std::string &file,

@@ -11,9 +11,10 @@
 #include <unistd.h>
 
 #include "gpu/gpu_support.hpp"
-#include "workflow/simulate/case_setup.hpp"
+#include "workflow/stage_table.hpp"
+#include "workflow/scene/case_setup.hpp"
 #include "workflow/scene/scene_section.hpp"
-#include "workflow/workflow.hpp"
+#include "workflow/file/workflow.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;
@@ -23,7 +24,7 @@ namespace {
 sm::Scene small_scene(const std::string &precision) {
   sm::Diagnostics diag;
   const auto resolved = sm::resolve_scene(
-      sm::load_workflow(fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml"), registry(), diag);
+      sm::load_workflow(fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml", sm::stage_names()), registry(), diag);
   diag.throw_if_any();
   sm::Scene scene = *resolved;
   scene.powder.count = 400;  // a low heap over the preset's 6-13 mm (a 3 mm heap would sit under the roller)

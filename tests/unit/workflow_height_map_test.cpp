@@ -15,7 +15,7 @@
 #include "workflow/scene/height_map_file.hpp"
 #include "workflow/scene/scene_section.hpp"
 #include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/simulate/layer_feed.hpp"
+#include "workflow/scene/layer_feed.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;

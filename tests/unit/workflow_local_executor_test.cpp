@@ -13,10 +13,11 @@
 #include <mutex>
 #include <thread>
 
+#include "workflow/run/run_dir.hpp"
 #include "core/error.hpp"
 #include "core/stop.hpp"
 #include "workflow/executors/local_executor.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;

@@ -14,7 +14,7 @@
 #include "workflow/scene/powder_cost.hpp"
 #include "workflow/scene/powder_sizes.hpp"
 #include "workflow/scene/scene_section.hpp"
-#include "workflow/simulate/coarse_grain.hpp"
+#include "workflow/scene/coarse_grain.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;

@@ -4,7 +4,7 @@
 
 #include <set>
 
-#include "workflow/simulate/replicates.hpp"
+#include "workflow/cases/replicates.hpp"
 
 namespace sm = spreadmap;
 

@@ -10,7 +10,7 @@
 #include "workflow/process.hpp"
 #include "workflow/run_files.hpp"
 #include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/simulate/layer_feed.hpp"
+#include "workflow/scene/layer_feed.hpp"
 
 namespace fs = std::filesystem;
 namespace sm = spreadmap;

@@ -1,7 +1,4 @@
-/* spreadmap plugin ABI, version 8 (2: PairList::upper; 3: its flat upper pairs, per-entry records; 4: Particles::team;
- * 5: TeamSlot::cuts; 6: spreaders describe themselves, sm_spreader_ops_v2; 7: sm_dataset_v1::noise_var,
- * sm_surrogate_ops_v1::takes_noise_var; 8: sm_layer_input_v1::substrate; 9: sm_contact_ops_v1::range,
- * WallContacts::gap). Plain C:
+/* spreadmap plugin ABI (its versions: docs/plugins.md, "The plugin ABI"). Plain C:
  * nothing C++ crosses a shared-library boundary. Every plugin exports exactly one symbol, `spreadmap_plugin_v1`,
  * returning a pointer to a static descriptor whose first field is the ABI number; the host checks it before touching
  * anything else. Bump SPREADMAP_PLUGIN_ABI on any change of layout in this file or in a kind's ops table. */

@@ -15,8 +15,10 @@
 #include "core/schema.hpp"
 #include "workflow/calibrate/calibration.hpp"
 #include "workflow/calibrate/calibration_file.hpp"
-#include "workflow/stage.hpp"
-#include "workflow/stage_table.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
+#include "workflow/stage/stage_settings.hpp"
 
 #include <spreadmap/params.hpp>
 

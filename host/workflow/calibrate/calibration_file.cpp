@@ -7,7 +7,7 @@
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 #include "workflow/scene_file/scene_build.hpp"
-#include "workflow/workflow.hpp"
+#include "workflow/file/workflow.hpp"
 
 namespace spreadmap::calibrate {
 namespace sm = spreadmap;

@@ -7,8 +7,8 @@
 #include "core/error.hpp"
 #include "core/suggest.hpp"
 #include "workflow/calibrate/calibration.hpp"
-#include "workflow/command_line.hpp"
-#include "workflow/commands.hpp"
+#include "workflow/stage/command_line.hpp"
+#include "workflow/stage/commands.hpp"
 
 namespace spreadmap {
 namespace {

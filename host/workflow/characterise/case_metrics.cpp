@@ -11,9 +11,9 @@
 #include "core/units.hpp"
 #include "workflow/figures/stage_figures.hpp"
 #include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/simulate/case_setup.hpp"
-#include "workflow/simulate/case_runner.hpp"
-#include "workflow/simulate/layer_feed.hpp"
+#include "workflow/scene/case_setup.hpp"
+#include "workflow/cases/case_runner.hpp"
+#include "workflow/scene/layer_feed.hpp"
 
 namespace spreadmap {
 namespace {
@@ -91,7 +91,7 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
     auto um = [&](const char *k) {
       return m.value(k, nlohmann::json()).is_number() ? m[k].get<double>() * 1e6 : std::nan("");
     };
-    figures::heightmap(r, dir / "heightmap.png",
+    figures::heightmap({r.nx, r.ny, r.x0, r.y0, r.cell, r.height}, dir / "heightmap.png",
                        fmt::format("{}{}: mean height {:.0f} um, R_q {:.0f} um", id,
                                    layer ? " layer " + std::to_string(layer) : "", um("mean_height"), um("rq")));
   }

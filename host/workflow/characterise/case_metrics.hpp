@@ -11,7 +11,7 @@
 #include "core/registry.hpp"
 #include "workflow/characterise/layer_eval.hpp"
 #include "workflow/figures/figure_style.hpp"
-#include "workflow/workflow.hpp"
+#include "workflow/file/workflow.hpp"
 
 namespace spreadmap {
 

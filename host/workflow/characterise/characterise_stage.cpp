@@ -22,10 +22,12 @@
 #include "workflow/characterise/bed_thickness.hpp"
 #include "workflow/characterise/case_metrics.hpp"
 #include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/simulate/case_runner.hpp"
-#include "workflow/simulate/case_setup.hpp"
-#include "workflow/simulate/layer_feed.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/cases/case_runner.hpp"
+#include "workflow/scene/case_setup.hpp"
+#include "workflow/scene/layer_feed.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
 
 namespace spreadmap {
 namespace {

@@ -9,10 +9,10 @@
 #include "core/heightmap_vti.hpp"
 #include "core/schema.hpp"
 #include "core/units.hpp"
-#include "workflow/command_line.hpp"
-#include "workflow/commands.hpp"
+#include "workflow/stage/command_line.hpp"
+#include "workflow/stage/commands.hpp"
 #include "workflow/characterise/layer_eval.hpp"
-#include "workflow/map/mapping.hpp"
+#include "core/units.hpp"
 
 namespace spreadmap {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
-#include "workflow/simulate/case_runner.hpp"
+#include "workflow/cases/case_runner.hpp"
 
 namespace spreadmap {
 

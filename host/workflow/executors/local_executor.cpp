@@ -9,7 +9,9 @@
 #include "core/error.hpp"
 #include "core/stop.hpp"
 #include "workflow/run/progress.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
 
 namespace spreadmap {
 

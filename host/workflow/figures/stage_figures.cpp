@@ -1,5 +1,7 @@
 #include "workflow/figures/stage_figures.hpp"
 
+#include "core/units.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <cmath>
@@ -13,7 +15,6 @@
 
 #include <fstream>
 
-#include "workflow/map/mapping.hpp"
 #include "workflow/figures/figure_style.hpp"
 
 namespace spreadmap::figures {
@@ -60,7 +61,7 @@ std::size_t frames(const std::vector<engine::ParticleSet> &, const std::vector<n
   unavailable();
   return 0;
 }
-void heightmap(const LayerResult &, const fs::path &, const std::string &) { unavailable(); }
+void heightmap(const HeightGrid &, const fs::path &, const std::string &) { unavailable(); }
 void parity(const analysis::Report &, const analysis::Table &, const std::vector<std::string> &, const fs::path &) {
   unavailable();
 }
@@ -190,7 +191,7 @@ std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::ve
   return written;
 }
 
-void heightmap(const LayerResult &layer, const fs::path &png, const std::string &title) {
+void heightmap(const HeightGrid &layer, const fs::path &png, const std::string &title) {
   if (layer.height.empty()) return;
   guarded(png, [&] {
     render::HeightmapInput in;
@@ -282,7 +283,7 @@ void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, 
       const auto u = cases.numbers(grid.inputs[0]), w = cases.numbers(grid.inputs[1]);
       for (std::size_t i = 0; i < u.size(); ++i) in.cases.push_back({u[i], w[i]});
     }
-    in.notes = map_notes(trust);
+    in.notes = analysis::trust_notes(trust);
     for (const auto &t : trust) {
       in.rq_greyed |= t.untrusted() && t.output == "rq";
       in.vs_greyed |= t.untrusted() && t.output == "vs";

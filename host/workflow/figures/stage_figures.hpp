@@ -12,7 +12,6 @@
 #include "analysis/optimum.hpp"
 #include "analysis/report.hpp"
 #include "engine/particle_set.hpp"
-#include "workflow/characterise/layer_eval.hpp"
 
 namespace spreadmap::figures {
 
@@ -36,7 +35,14 @@ void snapshot(const engine::ParticleSet &p, const Scene &scene, const nlohmann::
 // Numbered frames dir/frame_0000.png ... of a snapshot series, one colour scale for all; returns how many.
 std::size_t frames(const std::vector<engine::ParticleSet> &states, const std::vector<nlohmann::json> &poses,
                    const Scene &scene, const nlohmann::json &record, const fs::path &dir, const std::string &title);
-void heightmap(const LayerResult &layer, const fs::path &png, const std::string &title);
+// A height map as a metrics plugin gives it: nx x ny heights [m] above the substrate, row-major
+// (iy * nx + ix), square cells of `cell` from the corner (x0, y0).
+struct HeightGrid {
+  std::uint32_t nx = 0, ny = 0;
+  double x0 = 0, y0 = 0, cell = 0;
+  const std::vector<double> &height;
+};
+void heightmap(const HeightGrid &layer, const fs::path &png, const std::string &title);
 // Predicted against simulated V_s and R_q: the training fit, the test rows and, from `cv` (cv.csv:
 // <out>_true, <out>_cv), the out-of-fold predictions of cross-validation.
 void parity(const analysis::Report &report, const analysis::Table &cv, const std::vector<std::string> &outputs,

@@ -9,8 +9,8 @@
 #include "core/error.hpp"
 #include "core/suggest.hpp"
 #include "core/units.hpp"
-#include "workflow/command_line.hpp"
-#include "workflow/commands.hpp"
+#include "workflow/stage/command_line.hpp"
+#include "workflow/stage/commands.hpp"
 #include "workflow/map/mapping.hpp"
 
 namespace spreadmap {
@@ -47,7 +47,7 @@ void print_optimum(const analysis::Optimum &o, const analysis::ModelFile &file, 
   }
   std::cout << fmt::format("R_q <= {} (confidence {:.2f}): {}\n", display(o.rq_max, "m"), o.confidence,
                            describe_optimum(o, file));
-  for (const auto &line : map_notes(map.trust)) std::cout << "  " << line << "\n";
+  for (const auto &line : analysis::trust_notes(map.trust)) std::cout << "  " << line << "\n";
 }
 
 }  // namespace

@@ -10,8 +10,10 @@
 #include "core/units.hpp"
 #include "workflow/map/mapping.hpp"
 #include "workflow/figures/figure_style.hpp"
-#include "workflow/stage.hpp"
-#include "workflow/stage_table.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
+#include "workflow/stage/stage_settings.hpp"
 #include "workflow/train/train_config.hpp"
 
 namespace spreadmap {

@@ -161,15 +161,6 @@ void write_process_map(const MapResult &m, const analysis::ModelFile &file, cons
                          training ? *training : analysis::Table(), -1, m.trust);
 }
 
-std::vector<std::string> map_notes(const std::vector<analysis::MapTrust> &trust) {
-  std::vector<std::string> notes;
-  for (const auto &t : trust)
-    if (t.untrusted() && (t.output == "vs" || t.output == "rq"))
-      notes.push_back(fmt::format("{} map NOT TRUSTED: cross-validated Q^2 = {:.2f} < {:.2f}",
-                                  t.output == "rq" ? "R_q" : "V_s", t.q2_cv, analysis::min_trusted_q2_cv));
-  return notes;
-}
-
 std::string describe_optimum(const analysis::Optimum &o, const analysis::ModelFile &file) {
   std::string at;
   for (std::size_t i = 0; i < file.inputs.size(); ++i)
@@ -228,13 +219,5 @@ std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t 
   return out;
 }
 
-std::string display(double v, const std::string &unit) {
-  if (unit == "m^2/s") return fmt::format("{:.4g} mm^2/s", v * 1e6);
-  if (unit == "m/s") return fmt::format("{:.4g} mm/s", v * 1e3);
-  if (unit == "m") return fmt::format("{:.4g} um", v * 1e6);
-  if (unit == "rad/s") return fmt::format("{:.4g} rad/s", v);
-  if (unit.empty() || unit == "-" || unit == "1") return fmt::format("{:.4g}", v);
-  return fmt::format("{:.4g} {}", v, unit);
-}
 
 }  // namespace spreadmap

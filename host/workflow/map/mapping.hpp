@@ -56,10 +56,6 @@ std::size_t mapped_inputs(const analysis::ModelFile &file);
 std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t inputs);
 // Index of an output by name (case-insensitive): vs / rq.
 std::optional<std::size_t> output_index(const analysis::ModelFile &file, const std::string &name);
-// A value with its SI unit in display form: 3.3e-05 m^2/s -> "33.3 mm^2/s", 1.1e-4 m -> "110 um".
-std::string display(double value, const std::string &unit);
-// One line for each map (V_s, R_q) that cannot be trusted, for the figure and the log.
-std::vector<std::string> map_notes(const std::vector<analysis::MapTrust> &trust);
 // "U = 70 mm/s, omega = 0 rad/s: V_s = 33.1 mm^2/s, R_q = 104 um +- 2.1 um, P(R_q <= 110 um) = 0.93"
 std::string describe_optimum(const analysis::Optimum &optimum, const analysis::ModelFile &file);
 // A map confidence from text or YAML ("0.9", "90 %"); throws InputError naming `where` outside [0.5, 1).

@@ -1,8 +1,8 @@
 // spreadmap report RUN_DIR: rebuilds RUN_DIR/report.html from the run directory's files.
 #include <iostream>
 
-#include "workflow/command_line.hpp"
-#include "workflow/commands.hpp"
+#include "workflow/stage/command_line.hpp"
+#include "workflow/stage/commands.hpp"
 #include "workflow/report/run_report.hpp"
 
 namespace spreadmap {

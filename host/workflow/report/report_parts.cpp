@@ -1,5 +1,7 @@
 #include "workflow/report/report_parts.hpp"
 
+#include "core/units.hpp"
+
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 

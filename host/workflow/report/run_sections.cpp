@@ -9,6 +9,7 @@
 
 #include <spreadmap/abi.h>
 
+#include "core/units.hpp"
 #include "core/files.hpp"
 #include "workflow/map/mapping.hpp"
 #include "workflow/report/html.hpp"

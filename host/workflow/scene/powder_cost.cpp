@@ -10,8 +10,8 @@
 #include "engine/stability.hpp"
 #include "scene/heap.hpp"
 #include "workflow/scene/powder_sizes.hpp"
-#include "workflow/simulate/case_setup.hpp"
-#include "workflow/simulate/coarse_grain.hpp"
+#include "workflow/scene/case_setup.hpp"
+#include "workflow/scene/coarse_grain.hpp"
 
 namespace spreadmap {
 namespace {

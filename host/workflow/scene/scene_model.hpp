@@ -56,7 +56,7 @@ struct SpreaderChoice : PluginChoice {
 
 // A rough substrate (scene.substrate.roughness): a layer of fixed spheres over the plate whose tops
 // follow a Gaussian height field (scene/rough_substrate.hpp; the case set-up in
-// workflow/simulate/layer_feed.hpp).
+// workflow/scene/layer_feed.hpp).
 struct Roughness {
   double rq = 0;                  // m, R_q of the spheres' tops
   double correlation_length = 0;  // m, lag at which the field's autocorrelation falls to 1/e

@@ -8,7 +8,7 @@
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 #include "workflow/scene/cohesion_check.hpp"
-#include "workflow/scene/spreader_span.hpp"
+#include "workflow/scene/spreader_check.hpp"
 #include "workflow/scene/layers_check.hpp"
 #include "workflow/scene/powder_cost.hpp"
 #include "workflow/scene/powder_sizes.hpp"

@@ -25,7 +25,7 @@
 #include "core/registry.hpp"
 #include "workflow/scene/scene_key.hpp"
 #include "workflow/scene/scene_model.hpp"
-#include "workflow/workflow.hpp"
+#include "workflow/file/workflow.hpp"
 
 namespace spreadmap {
 

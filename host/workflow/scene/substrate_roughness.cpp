@@ -10,7 +10,7 @@
 #include "workflow/scene/layers_check.hpp"
 #include "workflow/scene/powder_sizes.hpp"
 #include "workflow/scene/substrate_height_map.hpp"
-#include "workflow/simulate/coarse_grain.hpp"
+#include "workflow/scene/coarse_grain.hpp"
 
 namespace spreadmap {
 

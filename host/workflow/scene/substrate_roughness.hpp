@@ -8,7 +8,7 @@
 // The substrate is drawn from the case's powder.seed (offset by a constant, so that it and the heap
 // draw different numbers): replicates get different substrates, a rerun the same one. Its mean plane
 // (the mean of the tops, mean_top) takes the flat plate's place as the plane the spreader's gap and
-// the layer's heights are measured from (workflow/simulate/layer_feed.hpp).
+// the layer's heights are measured from (workflow/scene/layer_feed.hpp).
 #pragma once
 #include <yaml-cpp/yaml.h>
 

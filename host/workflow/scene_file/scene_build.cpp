@@ -12,8 +12,8 @@
 #include "core/error.hpp"
 #include "workflow/scene_file/scene_parse.hpp"
 #include "workflow/scene_file/scene_walls.hpp"
-#include "workflow/scene/spreader_span.hpp"
-#include "workflow/workflow.hpp"
+#include "workflow/scene_file/spreader_span.hpp"
+#include "workflow/file/workflow.hpp"
 
 namespace spreadmap::scene_file {
 namespace {

@@ -1,4 +1,4 @@
-// From a scene (a scene file, or a workflow's spreading case: workflow/simulate/case_setup.hpp) to
+// From a scene (a scene file, or a workflow's spreading case: workflow/scene/case_setup.hpp) to
 // a running engine::Simulation: the contact plugin bound once per law (particle-particle, then one
 // per wall), the spreader plugins bound, the particles and the walls added, the step backend
 // chosen. The Simulation points into the bound plugins and the cylinder geometries, which live

@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
-#include "workflow/scene/spreader_span.hpp"
+#include "workflow/scene_file/spreader_span.hpp"
 #include "workflow/scene_file/scene_build.hpp"
 
 namespace spreadmap::scene_file {

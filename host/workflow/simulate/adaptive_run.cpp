@@ -1,5 +1,7 @@
 #include "workflow/simulate/adaptive_run.hpp"
 
+#include "workflow/run/run_dir.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include <functional>

@@ -9,7 +9,7 @@
 // fidelity (surrogate/gp's noise_by_input); a train stage asks for it with `params: {noise_by_input: K}`.
 #pragma once
 #include "workflow/simulate/design.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
 
 namespace spreadmap {
 

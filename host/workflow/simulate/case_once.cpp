@@ -1,12 +1,14 @@
 #include "workflow/simulate/case_once.hpp"
 
+#include "workflow/run/run_dir.hpp"
+
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "core/stop.hpp"
 #include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/simulate/case_setup.hpp"
-#include "workflow/simulate/coarse_grain.hpp"
+#include "workflow/scene/case_setup.hpp"
+#include "workflow/scene/coarse_grain.hpp"
 #include "workflow/executors/local_executor.hpp"
 
 namespace spreadmap {

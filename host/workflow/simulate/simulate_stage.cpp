@@ -9,14 +9,16 @@
 #include "core/schema.hpp"
 #include "cuda/backend.hpp"
 #include "workflow/simulate/adaptive_run.hpp"
-#include "workflow/simulate/coarse_grain.hpp"
+#include "workflow/scene/coarse_grain.hpp"
 #include "workflow/simulate/design.hpp"
-#include "workflow/simulate/replicates.hpp"
+#include "workflow/cases/replicates.hpp"
 #include "workflow/executors/executor_hook.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/figures/stage_figures.hpp"
-#include "workflow/stage.hpp"
-#include "workflow/stage_table.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
+#include "workflow/stage/stage_settings.hpp"
 
 namespace spreadmap {
 namespace {

@@ -7,9 +7,9 @@
 #include <iostream>
 
 #include "core/error.hpp"
-#include "workflow/command_line.hpp"
-#include "workflow/commands.hpp"
-#include "workflow/map/mapping.hpp"
+#include "workflow/stage/command_line.hpp"
+#include "workflow/stage/commands.hpp"
+#include "core/units.hpp"
 #include "workflow/train/training.hpp"
 
 namespace spreadmap {

@@ -2,7 +2,7 @@
 
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
-#include "workflow/stage_table.hpp"
+#include "workflow/stage/stage_settings.hpp"
 
 namespace spreadmap {
 

@@ -10,7 +10,7 @@
 #include "analysis/validation.hpp"
 #include "core/registry.hpp"
 #include "workflow/figures/figure_style.hpp"
-#include "workflow/workflow.hpp"
+#include "workflow/file/workflow.hpp"
 
 namespace spreadmap {
 

@@ -16,7 +16,7 @@
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 #include "workflow/figures/stage_figures.hpp"
-#include "workflow/map/mapping.hpp"
+#include "core/units.hpp"
 
 namespace spreadmap {
 

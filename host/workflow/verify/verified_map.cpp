@@ -1,5 +1,7 @@
 #include "workflow/verify/verified_map.hpp"
 
+#include "workflow/run/run_dir.hpp"
+
 #include <set>
 
 #include "analysis/table.hpp"

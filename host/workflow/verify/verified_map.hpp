@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "analysis/model_file.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
 
 namespace spreadmap {
 

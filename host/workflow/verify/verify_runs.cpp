@@ -1,5 +1,7 @@
 #include "workflow/verify/verify_runs.hpp"
 
+#include "workflow/run/run_dir.hpp"
+
 #include <spdlog/spdlog.h>
 
 #include "core/error.hpp"
@@ -7,9 +9,9 @@
 #include "core/stop.hpp"
 #include "workflow/executors/executor_hook.hpp"
 #include "workflow/executors/local_executor.hpp"
-#include "workflow/simulate/case_runner.hpp"
-#include "workflow/simulate/coarse_grain.hpp"
-#include "workflow/simulate/replicates.hpp"
+#include "workflow/cases/case_runner.hpp"
+#include "workflow/scene/coarse_grain.hpp"
+#include "workflow/cases/replicates.hpp"
 
 namespace spreadmap {
 

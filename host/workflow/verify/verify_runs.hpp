@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "workflow/characterise/case_metrics.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/scene/scene_model.hpp"
 
 namespace spreadmap {
 

@@ -12,6 +12,7 @@
 
 #include <optional>
 
+#include "core/units.hpp"
 #include "analysis/multifidelity.hpp"
 #include "analysis/replicate_summary.hpp"
 #include "analysis/table.hpp"
@@ -20,10 +21,12 @@
 #include "core/schema.hpp"
 #include "workflow/map/mapping.hpp"
 #include "workflow/scene/scene_section.hpp"
-#include "workflow/simulate/case_runner.hpp"
-#include "workflow/simulate/replicates.hpp"
-#include "workflow/stage.hpp"
-#include "workflow/stage_table.hpp"
+#include "workflow/cases/case_runner.hpp"
+#include "workflow/cases/replicates.hpp"
+#include "workflow/stage/stage.hpp"
+#include "workflow/run/run_dir.hpp"
+#include "workflow/scene/scene_model.hpp"
+#include "workflow/stage/stage_settings.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/verify/verification.hpp"
 #include "workflow/verify/verified_map.hpp"
@@ -261,8 +264,8 @@ class VerifyStage : public Stage {
     Diagnostics diag;
     std::vector<std::pair<std::unique_ptr<Stage>, std::size_t>> stages;
     stages.emplace_back(make_characterise_stage(rounds), *characterise_stage_);
-    stages.emplace_back(find_stage("train")->make(), *train_stage_);
-    stages.emplace_back(find_stage("map")->make(), *map_stage_);
+    stages.emplace_back(make_train_stage(), *train_stage_);
+    stages.emplace_back(make_map_stage(), *map_stage_);
     for (auto &[stage, i] : stages) stage->validate(ctx.wf, ctx.wf.stages[i], &ctx.scene, ctx.registry, diag);
     diag.throw_if_any();
     for (auto &[stage, i] : stages) stage->run(ctx);

@@ -40,7 +40,8 @@ struct Workflow {
 
 // Parses a YAML file; syntax errors become InputError "error: FILE:LINE:COL: ...".
 YAML::Node load_yaml(const fs::path &file);
-// Throws InputError listing every problem of the file's shape.
-Workflow load_workflow(const fs::path &file);
+// Throws InputError listing every problem of the file's shape; a stage is one of `stage_names`
+// (the runner passes stage_names() of workflow/stage_table.hpp).
+Workflow load_workflow(const fs::path &file, const std::vector<std::string> &stage_names);
 
 }  // namespace spreadmap

@@ -1,4 +1,4 @@
-#include "workflow/simulate/heap_cache.hpp"
+#include "workflow/cases/heap_cache.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -8,7 +8,7 @@
 
 #include "core/files.hpp"
 #include "engine/vtp_io.hpp"
-#include "workflow/simulate/case_setup.hpp"
+#include "workflow/scene/case_setup.hpp"
 
 namespace spreadmap {
 namespace {

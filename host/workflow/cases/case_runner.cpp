@@ -1,15 +1,15 @@
-#include "workflow/simulate/case_runner.hpp"
+#include "workflow/cases/case_runner.hpp"
 
 #include <omp.h>
 
 #include <optional>
 
-#include "workflow/simulate/case_record.hpp"
-#include "workflow/simulate/coarse_grain.hpp"
-#include "workflow/simulate/heap_cache.hpp"
-#include "workflow/simulate/layer_feed.hpp"
-#include "workflow/simulate/layers.hpp"
-#include "workflow/simulate/spread_pass.hpp"
+#include "workflow/cases/case_record.hpp"
+#include "workflow/scene/coarse_grain.hpp"
+#include "workflow/cases/heap_cache.hpp"
+#include "workflow/scene/layer_feed.hpp"
+#include "workflow/cases/layers.hpp"
+#include "workflow/cases/spread_pass.hpp"
 
 namespace spreadmap {
 namespace {

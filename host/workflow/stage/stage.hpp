@@ -10,13 +10,13 @@
 
 #include "core/diagnostics.hpp"
 #include "core/registry.hpp"
-#include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
-#include "workflow/workflow.hpp"
+#include "workflow/file/workflow.hpp"
 
 namespace spreadmap {
 
 class CaseExecutor;
+class RunDirectory;
+struct Scene;
 
 struct RunOptions {
   bool force = false;
@@ -54,19 +54,11 @@ class Stage {
   virtual void adjust_scene(Scene &, const RunDirectory &) {}
 };
 
-// The stages are the rows of stage_table() (stage_table.hpp). The characterise stage is also made
-// by the verify loop: verify_rounds > 0 makes the loop's own, which also measures the runs of its
-// first rounds.
+// The stages are the rows of stage_table() (workflow/stage_table.hpp). These three are also made by
+// the verify loop, which refits the map with its runs: verify_rounds > 0 makes the loop's own
+// characterise stage, which also measures the runs of its first rounds.
 std::unique_ptr<Stage> make_characterise_stage(std::size_t verify_rounds = 0);
-
-// The whole workflow: load, validate everything (scene, every stage), then run the selected
-// stages in order. validate_only stops after validation.
-struct Validated {
-  Workflow wf;
-  std::optional<Scene> scene;
-  std::vector<std::unique_ptr<Stage>> stages;
-};
-Validated validate_workflow(const fs::path &file, PluginRegistry &registry);
-int run_workflow(const fs::path &file, const RunOptions &options, PluginRegistry &registry);
+std::unique_ptr<Stage> make_train_stage();
+std::unique_ptr<Stage> make_map_stage();
 
 }  // namespace spreadmap

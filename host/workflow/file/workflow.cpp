@@ -1,4 +1,4 @@
-#include "workflow/workflow.hpp"
+#include "workflow/file/workflow.hpp"
 
 #include <yaml-cpp/depthguard.h>
 
@@ -7,7 +7,6 @@
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/suggest.hpp"
-#include "workflow/stage_table.hpp"
 
 namespace spreadmap {
 
@@ -77,7 +76,8 @@ void read_scene(Workflow &wf, const std::string &f, Diagnostics &diag) {
 }
 
 // One entry of `stages`: a stage of the table, once, with a mapping of settings.
-void read_stage(Workflow &wf, const YAML::Node &s, std::size_t i, const std::string &f, Diagnostics &diag) {
+void read_stage(Workflow &wf, const YAML::Node &s, std::size_t i, const std::vector<std::string> &stage_names,
+                const std::string &f, Diagnostics &diag) {
   const std::string path = "stages[" + std::to_string(i) + "]";
   std::string kind;
   YAML::Node config;
@@ -87,14 +87,14 @@ void read_stage(Workflow &wf, const YAML::Node &s, std::size_t i, const std::str
     kind = s.begin()->first.as<std::string>();
     config = s.begin()->second;
   } else {
-    diag.error(Location::of(f, s), path, "a stage is one key (" + join(stage_names()) + ") with its settings");
+    diag.error(Location::of(f, s), path, "a stage is one key (" + join(stage_names) + ") with its settings");
     return;
   }
   const YAML::Node key = s.IsMap() ? s.begin()->first : s;
-  if (!find_stage(kind)) {
-    const std::string near = closest(kind, stage_names());
+  if (std::find(stage_names.begin(), stage_names.end(), kind) == stage_names.end()) {
+    const std::string near = closest(kind, stage_names);
     diag.error(Location::of(f, key), path, "unknown stage '" + kind + "'",
-               (near.empty() ? "" : "did you mean '" + near + "'? ") + "stages: " + join(stage_names()));
+               (near.empty() ? "" : "did you mean '" + near + "'? ") + "stages: " + join(stage_names));
     return;
   }
   // each stage writes its own files in the run directory (and its manifest entry): once only
@@ -111,7 +111,7 @@ void read_stage(Workflow &wf, const YAML::Node &s, std::size_t i, const std::str
   wf.stages.push_back({kind, config && config.IsMap() ? config : YAML::Node(YAML::NodeType::Map), Location::of(f, s)});
 }
 
-void read_stages(Workflow &wf, const std::string &f, Diagnostics &diag) {
+void read_stages(Workflow &wf, const std::vector<std::string> &stage_names, const std::string &f, Diagnostics &diag) {
   const YAML::Node stages = wf.root["stages"];
   if (!stages)
     diag.error(Location::of(f, wf.root), "stages", "missing",
@@ -119,12 +119,12 @@ void read_stages(Workflow &wf, const std::string &f, Diagnostics &diag) {
   else if (!stages.IsSequence())
     diag.error(Location::of(f, stages), "stages", "expected a list of stages (- simulate: {...})");
   else
-    for (std::size_t i = 0; i < stages.size(); ++i) read_stage(wf, stages[i], i, f, diag);
+    for (std::size_t i = 0; i < stages.size(); ++i) read_stage(wf, stages[i], i, stage_names, f, diag);
 }
 
 }  // namespace
 
-Workflow load_workflow(const fs::path &file) {
+Workflow load_workflow(const fs::path &file, const std::vector<std::string> &stage_names) {
   Workflow wf;
   wf.file = file;
   wf.dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
@@ -140,7 +140,7 @@ Workflow load_workflow(const fs::path &file) {
   check_top_keys(wf, f, diag);
   wf.name = read_name(wf, file, diag);
   read_scene(wf, f, diag);
-  read_stages(wf, f, diag);
+  read_stages(wf, stage_names, f, diag);
   diag.throw_if_any();
   return wf;
 }

@@ -1,4 +1,4 @@
-#include "workflow/simulate/layers.hpp"
+#include "workflow/cases/layers.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -6,11 +6,11 @@
 
 #include "core/files.hpp"
 #include "engine/vtp_io.hpp"
-#include "workflow/simulate/case_record.hpp"
-#include "workflow/simulate/case_setup.hpp"
-#include "workflow/simulate/heap_cache.hpp"
-#include "workflow/simulate/layer_feed.hpp"
-#include "workflow/simulate/spread_pass.hpp"
+#include "workflow/cases/case_record.hpp"
+#include "workflow/scene/case_setup.hpp"
+#include "workflow/cases/heap_cache.hpp"
+#include "workflow/scene/layer_feed.hpp"
+#include "workflow/cases/spread_pass.hpp"
 
 namespace spreadmap {
 

@@ -1,9 +1,10 @@
 // spreadmap verify WORKFLOW [--out DIR] [--force] [--jobs N]: the workflow's verify stage alone, on
 // the run directory its earlier stages filled (the map's optimum, the trained model).
+#include "workflow/runner.hpp"
 #include "core/error.hpp"
-#include "workflow/command_line.hpp"
-#include "workflow/commands.hpp"
-#include "workflow/stage.hpp"
+#include "workflow/stage/command_line.hpp"
+#include "workflow/stage/commands.hpp"
+#include "workflow/stage/stage.hpp"
 
 namespace spreadmap {
 

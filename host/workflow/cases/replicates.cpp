@@ -1,4 +1,4 @@
-#include "workflow/simulate/replicates.hpp"
+#include "workflow/cases/replicates.hpp"
 
 #include "core/schema.hpp"
 

@@ -1,4 +1,4 @@
-#include "workflow/simulate/layer_feed.hpp"
+#include "workflow/scene/layer_feed.hpp"
 
 #include <algorithm>
 #include <functional>

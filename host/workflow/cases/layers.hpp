@@ -6,7 +6,7 @@
 
 #include "core/registry.hpp"
 #include "engine/particle_set.hpp"
-#include "workflow/simulate/case_runner.hpp"
+#include "workflow/cases/case_runner.hpp"
 
 namespace spreadmap {
 

@@ -3,7 +3,7 @@
 // every later case with the same powder, domain, contacts and spreader at rest.
 #pragma once
 #include "engine/particle_set.hpp"
-#include "workflow/simulate/case_runner.hpp"
+#include "workflow/cases/case_runner.hpp"
 
 namespace spreadmap {
 

@@ -1,4 +1,4 @@
-#include "workflow/simulate/coarse_grain.hpp"
+#include "workflow/scene/coarse_grain.hpp"
 
 #include <cmath>
 #include <string>

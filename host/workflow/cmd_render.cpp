@@ -3,8 +3,8 @@
 
 #include "core/error.hpp"
 #include "core/files.hpp"
-#include "workflow/command_line.hpp"
-#include "workflow/commands.hpp"
+#include "workflow/stage/command_line.hpp"
+#include "workflow/stage/commands.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/figures/stage_figures.hpp"
 #include "workflow/characterise/layer_eval.hpp"

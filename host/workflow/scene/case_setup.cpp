@@ -1,4 +1,4 @@
-#include "workflow/simulate/case_setup.hpp"
+#include "workflow/scene/case_setup.hpp"
 
 #include <spdlog/spdlog.h>
 #include <spreadmap/contact.hpp>
@@ -10,7 +10,7 @@
 #include "core/stop.hpp"
 #include "scene/heap.hpp"
 #include "workflow/scene/powder_sizes.hpp"
-#include "workflow/simulate/layer_feed.hpp"
+#include "workflow/scene/layer_feed.hpp"
 
 namespace spreadmap {
 

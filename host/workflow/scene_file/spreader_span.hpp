@@ -4,15 +4,11 @@
 // the run stops with a blow-up). With open sides the powder beyond its ends is only never spread.
 #pragma once
 #include <spreadmap/geometry.hpp>
-#include <yaml-cpp/yaml.h>
 
 #include <optional>
 #include <string>
 
-#include "core/diagnostics.hpp"
-#include "core/registry.hpp"
 #include "engine/domain.hpp"
-#include "workflow/scene/scene_model.hpp"
 
 namespace spreadmap {
 
@@ -26,10 +22,5 @@ struct SpanShortfall {
 // domain's y extent.
 std::optional<SpanShortfall> spreader_span_shortfall(const sm_spreader_description_v2 &spreader,
                                                      const engine::Domain &domain);
-
-// validate's check of a workflow's scene: refuses a spreader short of a periodic width (file:line,
-// scene.spreader.y_centre, the centred value as the fix) and warns of one short of an open width.
-void check_spreader_span(const Scene &scene, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
-                         Diagnostics &diag);
 
 }  // namespace spreadmap

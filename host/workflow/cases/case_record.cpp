@@ -1,9 +1,9 @@
-#include "workflow/simulate/case_record.hpp"
+#include "workflow/cases/case_record.hpp"
 
 #include <cmath>
 
 #include "core/files.hpp"
-#include "workflow/simulate/case_runner.hpp"
+#include "workflow/cases/case_runner.hpp"
 
 namespace spreadmap {
 

@@ -1,4 +1,4 @@
-#include "workflow/simulate/spread_pass.hpp"
+#include "workflow/cases/spread_pass.hpp"
 
 #include <spdlog/spdlog.h>
 
@@ -10,7 +10,7 @@
 #include "engine/errors.hpp"
 #include "engine/simulation.hpp"
 #include "engine/vtp_io.hpp"
-#include "workflow/simulate/case_setup.hpp"
+#include "workflow/scene/case_setup.hpp"
 
 namespace spreadmap {
 namespace {
