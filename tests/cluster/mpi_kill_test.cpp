@@ -38,10 +38,23 @@ std::vector<pid_t> descendants(pid_t root) {
   return found;
 }
 
-// The pid of MPI rank `rank` among the processes mpirun (`job`) started, or -1.
-pid_t rank_pid(int rank, pid_t job) {
+// Every process whose command line names `out`: where a kernel keeps no children lists.
+std::vector<pid_t> naming(const fs::path &out) {
+  std::vector<pid_t> found;
+  for (const auto &e : fs::directory_iterator("/proc")) {
+    const std::string name = e.path().filename().string();
+    if (name.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (t::slurp(e.path() / "cmdline").find(out.string()) != std::string::npos) found.push_back(std::stoi(name));
+  }
+  return found;
+}
+
+// The pid of MPI rank `rank` among the processes mpirun (`job`, writing to `out`) started, or -1.
+pid_t rank_pid(int rank, pid_t job, const fs::path &out) {
   const std::string want = "OMPI_COMM_WORLD_RANK=" + std::to_string(rank);
-  for (const pid_t p : descendants(job)) {
+  std::vector<pid_t> candidates = descendants(job);
+  if (candidates.empty()) candidates = naming(out);
+  for (const pid_t p : candidates) {
     const std::string environ = t::slurp(fs::path("/proc") / std::to_string(p) / "environ");
     std::size_t at = 0;
     for (std::size_t end; (end = environ.find('\0', at)) != std::string::npos; at = end + 1)
@@ -74,8 +87,8 @@ t::Outcome kill_a_worker_midway(const std::vector<std::string> &args, const fs::
   auto waiting = [&] { return job.running() && std::chrono::steady_clock::now() < deadline; };
   pid_t victim = -1, other = -1;
   while (waiting() && (victim <= 0 || other <= 0)) {
-    if (victim <= 0) victim = rank_pid(1, job.pid());
-    if (other <= 0) other = rank_pid(2, job.pid());
+    if (victim <= 0) victim = rank_pid(1, job.pid(), run);
+    if (other <= 0) other = rank_pid(2, job.pid(), run);
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   }
   EXPECT_GT(victim, 0) << "rank 1 not found";
