@@ -165,7 +165,7 @@ TEST_P(Mutation, EveryMutantGetsACleanAnswer) {
   std::vector<fs::path> files;
   std::vector<std::string> args = {"validate"};
   for (std::size_t i = 0; i < all.size(); ++i) {
-    char tag[16];
+    char tag[32];  // ".m" and up to 20 digits
     std::snprintf(tag, sizeof tag, ".m%05zu", i);
     files.push_back(home / (GetParam().stem().string() + tag + ".yaml"));
     std::ofstream out(files.back());
