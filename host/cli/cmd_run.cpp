@@ -94,14 +94,8 @@ int cmd_run(int argc, char **argv) {
     opt.only_case = one_case;
     opt.case_threads = cluster.threads_per_rank;
   }
-  std::size_t pos = 0;
-  while (!only.empty() && pos <= only.size()) {
-    const std::size_t comma = only.find(',', pos);
-    const std::string s = only.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos);
+  for (const auto &s : sm::split(only, ','))
     if (!s.empty()) opt.only.insert(sm::lower(s));
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
   opt.out = out;
   check_cluster_options(cluster, opt, vm);
   if (opt.only_case) opt.only = {"simulate"};

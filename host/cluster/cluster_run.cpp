@@ -1,4 +1,3 @@
-#include "workflow/runner.hpp"
 #include "cluster/cluster_run.hpp"
 
 #include "cluster/slurm_executor.hpp"

@@ -29,19 +29,6 @@ const char *type_name(sm_param_type t) {
   return "?";
 }
 
-std::vector<std::string> split_choices(const char *choices) {
-  std::vector<std::string> out;
-  std::string s = choices ? choices : "";
-  std::size_t pos = 0;
-  while (pos <= s.size()) {
-    const std::size_t bar = s.find('|', pos);
-    out.push_back(s.substr(pos, bar == std::string::npos ? std::string::npos : bar - pos));
-    if (bar == std::string::npos) break;
-    pos = bar + 1;
-  }
-  return out;
-}
-
 std::string fmt_num(double v) {
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
   return fmt::format("{:g}", v);
@@ -162,7 +149,7 @@ nlohmann::json validate_value(const sm_param_v1 &p, const YAML::Node &value, con
       return nullptr;
     }
     case SM_ENUM: {
-      const auto choices = split_choices(p.choices);
+      const auto choices = split(p.choices ? p.choices : "", '|');
       for (const auto &c : choices)
         if (iequals(c, s)) return c;
       const std::string near = closest(s, choices);
@@ -268,7 +255,7 @@ nlohmann::json params_json(const SchemaView &schema) {
       if (p.type == SM_BOOLEAN) e["default"] = p.def != 0;
       if (p.type == SM_ENUM || p.type == SM_STRING) e["default"] = p.def_text ? p.def_text : "";
     }
-    if (p.type == SM_ENUM) e["choices"] = split_choices(p.choices);
+    if (p.type == SM_ENUM) e["choices"] = split(p.choices ? p.choices : "", '|');
     params.push_back(e);
   }
   return params;

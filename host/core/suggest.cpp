@@ -38,6 +38,14 @@ std::string closest(const std::string &word, const std::vector<std::string> &can
   return best;
 }
 
+std::vector<std::string> split(const std::string &text, char sep) {
+  std::vector<std::string> out;
+  std::size_t pos = 0;
+  for (std::size_t at; (at = text.find(sep, pos)) != std::string::npos; pos = at + 1) out.push_back(text.substr(pos, at - pos));
+  out.push_back(text.substr(pos));
+  return out;
+}
+
 std::string join(const std::vector<std::string> &items, const std::string &sep) {
   std::string out;
   for (std::size_t i = 0; i < items.size(); ++i) out += (i ? sep : "") + items[i];

@@ -42,3 +42,11 @@ TEST(CoreSuggest, JoinLowerIequals) {
   EXPECT_TRUE(sm::iequals("Omega", "oMEGA"));
   EXPECT_FALSE(sm::iequals("omega", "omegas"));
 }
+
+TEST(CoreSuggest, SplitKeepsEveryItemEmptyOnesToo) {
+  using V = std::vector<std::string>;
+  EXPECT_EQ(sm::split("40, 70,100 mm/s", ','), (V{"40", " 70", "100 mm/s"}));
+  EXPECT_EQ(sm::split("a||b|", '|'), (V{"a", "", "b", ""}));
+  EXPECT_EQ(sm::split("", ','), (V{""}));
+  EXPECT_EQ(sm::join(sm::split("x,y,z", ','), ","), "x,y,z");
+}

@@ -50,19 +50,6 @@ void append_value_range(const YAML::Node &node, const sm_param_v1 &param, const 
   }
 }
 
-// The items of "40, 70, 100 mm/s", empty ones kept.
-std::vector<std::string> comma_separated(const std::string &s) {
-  std::vector<std::string> parts;
-  std::size_t pos = 0;
-  while (pos <= s.size()) {
-    const std::size_t comma = s.find(',', pos);
-    parts.push_back(s.substr(pos, comma == std::string::npos ? std::string::npos : comma - pos));
-    if (comma == std::string::npos) break;
-    pos = comma + 1;
-  }
-  return parts;
-}
-
 // The unit after the last item's number ("" when it has none, or is no number).
 std::string unit_after_number(const std::string &last) {
   std::size_t used = 0;
@@ -77,7 +64,7 @@ std::string unit_after_number(const std::string &last) {
 // "40, 70, 100 mm/s": one unit for the whole list, given after the last value.
 void append_comma_list(const YAML::Node &node, const sm_param_v1 &param, const std::string &file,
                        const std::string &key_path, Diagnostics &diag, std::vector<double> &out) {
-  std::vector<std::string> parts = comma_separated(node.Scalar());
+  std::vector<std::string> parts = split(node.Scalar(), ',');
   const std::string unit = unit_after_number(parts.back());
   for (auto &p : parts) {
     std::size_t used = 0;
