@@ -51,35 +51,12 @@ class PrivateXvfb {
   }
   ~PrivateXvfb() { stop(); }
 
-  // The display is named, not left to Xvfb's -displayfd search from :0: a server exiting on a
-  // number removes its socket file after releasing its lock, so a second server that took the same
-  // number a moment later loses its socket and every client gets "bad X server connection" (seen
-  // with tests rendering side by side). A number from this process's pid is almost never one that
-  // another process has just let go of; when it is taken, Xvfb exits and the next one is tried.
   std::string start() {
     const auto exe = find_on_path("Xvfb");
     if (!exe)
       throw sm::render::RenderError(
           "render: DISPLAY is unset and Xvfb was not found on PATH; VTK 9.1 on Debian renders only "
           "through X. Install the Debian package 'xvfb' (apt-get install xvfb) or set DISPLAY");
-    constexpr int first = 100, span = 900, tries = 8;
-    for (int k = 0; k < tries; ++k) {
-      const int number = first + (static_cast<int>(::getpid()) + 97 * k) % span;
-      if (start_on(*exe, number)) return display_;
-    }
-    throw sm::render::RenderError("render: the private Xvfb (" + *exe + ") did not start on any of " +
-                                  std::to_string(tries) + " display numbers within " +
-                                  std::to_string(start_timeout_ms / 1000) + " s; check that it runs (" + *exe +
-                                  " :99) or set DISPLAY");
-  }
-
-  bool running() const { return pid_ > 0; }
-  const std::string& display() const { return display_; }
-
- private:
-  // Starts Xvfb on display `number`; false (the server stopped) when it did not report ready, e.g.
-  // because another server holds that number.
-  bool start_on(const std::string& exe, int number) {
     int fds[2];
     if (::pipe2(fds, O_CLOEXEC) != 0)
       throw sm::render::RenderError(std::string("render: cannot create a pipe for Xvfb: ") + std::strerror(errno));
@@ -104,14 +81,13 @@ class PrivateXvfb {
         ::dup2(devnull, 2);
       }
       ::setsid();  // own process group: terminal signals aimed at the parent's group miss it
-      const std::string display = ":" + std::to_string(number);
-      ::execl(exe.c_str(), "Xvfb", display.c_str(), "-displayfd", "3", "-screen", "0", screen_geometry, "-nolisten",
-              "tcp", static_cast<char*>(nullptr));
+      ::execl(exe->c_str(), "Xvfb", "-displayfd", "3", "-screen", "0", screen_geometry, "-nolisten", "tcp",
+              static_cast<char*>(nullptr));
       ::_exit(127);
     }
     ::close(fds[1]);
     pid_ = child;
-    std::string reported;
+    std::string number;
     const auto deadline_left = [start = std::chrono::steady_clock::now()] {
       return start_timeout_ms - static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
                                                      std::chrono::steady_clock::now() - start)
@@ -124,18 +100,24 @@ class PrivateXvfb {
       char c;
       const ssize_t n = ::read(fds[0], &c, 1);
       if (n <= 0 || c == '\n') break;
-      reported.push_back(c);
+      number.push_back(c);
     }
     ::close(fds[0]);
-    if (reported != std::to_string(number)) {
+    if (number.empty()) {
       stop();
-      return false;
+      throw sm::render::RenderError("render: the private Xvfb (" + *exe + ") did not report a display within " +
+                                    std::to_string(start_timeout_ms / 1000) + " s; check that it runs (" + *exe +
+                                    " -displayfd 1) or set DISPLAY");
     }
-    display_ = ":" + reported;
+    display_ = ":" + number;
     ::setenv("DISPLAY", display_.c_str(), 1);
-    return true;
+    return display_;
   }
 
+  bool running() const { return pid_ > 0; }
+  const std::string& display() const { return display_; }
+
+ private:
   void stop() {
     if (pid_ <= 0) return;
     ::kill(pid_, SIGTERM);
