@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/csv_line.hpp"
 #include "core/files.hpp"
 #include "read_file.hpp"
 
@@ -23,42 +24,6 @@ std::string lower(std::string s) {
 std::string trim(const std::string &s) {
   const auto b = s.find_first_not_of(" \t\r"), e = s.find_last_not_of(" \t\r");
   return b == std::string::npos ? std::string() : s.substr(b, e - b + 1);
-}
-struct TableCell {
-  std::string text;
-  std::size_t column;  // 1-based character column where the field starts
-};
-// Splits one CSV line; quoted fields may contain commas and "" for a quote.
-std::vector<TableCell> split_line(const std::string &line, const std::string &where) {
-  std::vector<TableCell> out;
-  std::size_t i = 0;
-  while (true) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
-    TableCell f{{}, i + 1};
-    if (i < line.size() && line[i] == '"') {
-      ++i;
-      bool closed = false;
-      while (i < line.size()) {
-        if (line[i] == '"') {
-          if (i + 1 < line.size() && line[i + 1] == '"') f.text += '"', i += 2;
-          else {
-            ++i, closed = true;
-            break;
-          }
-        } else f.text += line[i++];
-      }
-      if (!closed) throw std::runtime_error(where + ":" + std::to_string(f.column) + ": unterminated quoted field");
-      while (i < line.size() && line[i] != ',') ++i;
-    } else {
-      const std::size_t end = std::min(line.find(',', i), line.size());
-      f.text = trim(line.substr(i, end - i));
-      i = end;
-    }
-    out.push_back(f);
-    if (i >= line.size()) break;
-    ++i;  // the comma
-  }
-  return out;
 }
 std::string quoted(const std::string &s) {
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
@@ -89,7 +54,7 @@ Table Table::parse_csv(const std::string &text, const std::string &source) {
       continue;
     }
     const std::string where = source + ":" + std::to_string(line_no);
-    auto fields = split_line(line, where);
+    auto fields = core::split_csv_line(line, where);
     if (header) {
       for (const auto &f : fields) {
         if (f.text.empty())

@@ -1,6 +1,8 @@
 #include <engine/csv_input.hpp>
 #include <engine/errors.hpp>
 
+#include <core/csv_line.hpp>
+
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -33,27 +35,6 @@ std::string lower(std::string_view s) {
   return out;
 }
 
-struct CsvField {
-  std::string_view text;
-  std::size_t column;  // 1-based character position
-};
-
-std::vector<CsvField> split(std::string_view line) {
-  std::vector<CsvField> out;
-  std::size_t begin = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', begin);
-    const std::string_view raw =
-        line.substr(begin, comma == std::string_view::npos ? std::string_view::npos : comma - begin);
-    std::size_t lead = 0;
-    while (lead < raw.size() && std::isspace(static_cast<unsigned char>(raw[lead]))) ++lead;
-    out.push_back({trim(raw), begin + lead + 1});
-    if (comma == std::string_view::npos) break;
-    begin = comma + 1;
-  }
-  return out;
-}
-
 }  // namespace
 
 ParticleSet read_particles_csv(const std::filesystem::path &path, std::vector<std::size_t> *lines) {
@@ -74,7 +55,12 @@ ParticleSet read_particles_csv(const std::filesystem::path &path, std::vector<st
     if (!line.empty() && line.back() == '\r') line.pop_back();
     const std::string_view body = trim(line);
     if (body.empty() || body.front() == '#') continue;
-    const auto fields = split(line);
+    std::vector<core::CsvCell> fields;
+    try {
+      fields = core::split_csv_line(line, fmt::format("{}:{}", file, line_no));
+    } catch (const std::runtime_error &e) {
+      throw SetupError(e.what());
+    }
     if (!have_header) {
       for (const auto &f : fields) {
         const std::string name = lower(f.text);

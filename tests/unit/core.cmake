@@ -36,6 +36,7 @@ spreadmap_test(unit core
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/core_units_test.cpp ${CMAKE_CURRENT_LIST_DIR}/core_schema_test.cpp
           ${CMAKE_CURRENT_LIST_DIR}/core_suggest_test.cpp ${CMAKE_CURRENT_LIST_DIR}/core_files_test.cpp
           ${CMAKE_CURRENT_LIST_DIR}/core_diagnostics_test.cpp ${CMAKE_CURRENT_LIST_DIR}/core_registry_test.cpp
+          ${CMAKE_CURRENT_LIST_DIR}/core_csv_line_test.cpp
   LIBS spreadmap_core)
 add_dependencies(test_unit_core ${SPREADMAP_FIXTURE_TARGETS})
 target_compile_definitions(test_unit_core PRIVATE SPREADMAP_FIXTURE_DIR="${SPREADMAP_FIXTURE_DIR}")
