@@ -60,7 +60,21 @@ nlohmann::json check_stage_settings(const StageInfo &info, const YAML::Node &con
   if (info.plugin_settings && config.IsMap())
     for (const auto &kv : config)
       if (!info.settings.find(kv.first.as<std::string>())) plugin_keys.insert(kv.first.as<std::string>());
-  return validate_params(info.settings, config, file, info.name, diag, plugin_keys);
+  nlohmann::json settings = validate_params(info.settings, config, file, info.name, diag, plugin_keys);
+  // A refused value reads as its default (see stage_settings.hpp); tables stay null where refused.
+  bool refused = false;
+  for (auto it = settings.begin(); it != settings.end();) {
+    const sm_param_v1 *p = info.settings.find(it.key());
+    if (it->is_null() && p && p->type != SM_TABLE) {
+      it = settings.erase(it);
+      refused = true;
+    } else {
+      ++it;
+    }
+  }
+  Diagnostics already_reported;  // a refused required key was named by the check above
+  if (refused) fill_defaults(info.settings, settings, Location::of(file, config), info.name, already_reported);
+  return settings;
 }
 
 }  // namespace spreadmap

@@ -10,8 +10,10 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/command_table.hpp"
+#include "core/diagnostics.hpp"
 #include "core/suggest.hpp"
 #include "workflow/process.hpp"
+#include "workflow/stage_table.hpp"
 
 namespace fs = std::filesystem;
 namespace t = spreadmap::test;
@@ -115,4 +117,19 @@ TEST(CommandTable, AWorkflowAcceptsExactlyTheStagesOfTheTable) {
   for (std::string *s : {&run_help, &names}) std::erase_if(*s, [](char c) { return std::isspace(c); });  // wrapped
   EXPECT_TRUE(contains(run_help, "(of" + names + ")")) << run_help;
   fs::remove_all(dir);
+}
+
+// A stage's defaults are written once, in its schema: a setting not given, or refused, reads as the
+// schema's default (the refusal is still an error, named once).
+TEST(CommandTable, ARefusedStageSettingReadsAsTheSchemasDefaultAndIsNamedOnce) {
+  const spreadmap::StageInfo *train = spreadmap::find_stage("train");
+  ASSERT_NE(train, nullptr);
+  const double folds_default = train->settings.find("folds")->def;
+  spreadmap::Diagnostics diag;
+  const YAML::Node config = YAML::Load("{folds: -3, seed: 7}");
+  const nlohmann::json settings = spreadmap::check_stage_settings(*train, config, "w.yaml", diag);
+  EXPECT_EQ(diag.errors().size(), 1u);
+  EXPECT_EQ(settings.at("folds").get<double>(), folds_default);
+  EXPECT_EQ(settings.at("seed").get<long>(), 7);
+  EXPECT_EQ(settings.at("split").get<std::string>(), "auto");  // not given: the default
 }

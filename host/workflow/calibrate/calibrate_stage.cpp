@@ -37,7 +37,7 @@ class CalibrateStage : public Stage {
   void validate(const Workflow &wf, const StageEntry &entry, const Scene *scene, PluginRegistry &registry,
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
-    apply_ = setting_flag(entry.settings, "apply", false);
+    apply_ = setting_flag(entry.settings, "apply");
     const std::string name = setting_text(entry.settings, "file");
     if (name.empty()) {  // a missing key is reported by the settings' check
       if (entry.config["file"])

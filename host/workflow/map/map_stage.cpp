@@ -72,7 +72,7 @@ class MapStage : public Stage {
         }
       }
     }
-    confidence_ = setting_number(set, "confidence", default_confidence);
+    confidence_ = setting_number(set, "confidence");
     if (confidence_ == 1)
       diag.error(Location::of(file, cfg["confidence"]), "map.confidence",
                  "P(R_q <= target) = 1 asks for an infinite margin on the prediction",

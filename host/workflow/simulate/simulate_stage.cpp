@@ -49,7 +49,7 @@ class SimulateStage : public Stage {
     const std::string file = wf.file.string();
     style_ = figures::read_style(entry.config["render"], true, true, file, "simulate.render", diag);
     render_ = style_.on;
-    replicates_ = setting_count(entry.settings, "replicates", 1);
+    replicates_ = setting_count(entry.settings, "replicates");
     if (!scene) return;  // scene errors already reported
     design_ = parse_design(entry.config["design"], file, "simulate.design", *scene, registry, diag);
     if (design_.type == "adaptive" && replicates_ > 1)

@@ -1,6 +1,8 @@
-// A stage's settings after the schema check (StageEntry::settings): each read with the value to use
-// where the check refused the one given (the run stops on that error; validate() goes on to find
-// the others). The schema builders (number, integer, table, ...) come with <spreadmap/params.hpp>.
+// A stage's settings after the schema check (StageEntry::settings). Every key of the stage's schema
+// is there: the value given, or the schema's default where none was given or the one given was
+// refused (the run stops on that error; validate() goes on to find the others), so a default is
+// written once, in the schema. A required key that was refused reads as 0, false or "".
+// The schema builders (number, integer, table, ...) come with <spreadmap/params.hpp>.
 #pragma once
 #include <spreadmap/params.hpp>
 
@@ -12,9 +14,9 @@
 
 namespace spreadmap {
 
-double setting_number(const nlohmann::json &settings, const char *key, double fallback);
-std::size_t setting_count(const nlohmann::json &settings, const char *key, std::size_t fallback);
-bool setting_flag(const nlohmann::json &settings, const char *key, bool fallback);
-std::string setting_text(const nlohmann::json &settings, const char *key, const std::string &fallback = "");
+double setting_number(const nlohmann::json &settings, const char *key);
+std::size_t setting_count(const nlohmann::json &settings, const char *key);
+bool setting_flag(const nlohmann::json &settings, const char *key);
+std::string setting_text(const nlohmann::json &settings, const char *key);
 
 }  // namespace spreadmap

@@ -69,7 +69,7 @@ class TradeoffStage : public Stage {
     if (scene && scene->layers.count > 1)
       diag.error(entry.where, "tradeoff", "measures one pass; a multi-layer scene is not supported yet",
                  "spread one layer in the tradeoff's workflow (scene.layers.count: 1)");
-    heaps_ = int(setting_count(entry.settings, "heaps", std::size_t(heaps_)));
+    heaps_ = int(setting_count(entry.settings, "heaps"));
     style_ = figures::read_style(cfg["render"], false, false, file, "tradeoff.render", diag);
     render_ = style_.on;
     const YAML::Node list = cfg["fidelities"];
@@ -197,7 +197,7 @@ class TradeoffStage : public Stage {
   }
 
   std::vector<Fidelity> fidelities_;
-  int heaps_ = 3;
+  int heaps_ = 0;  // from the settings (the schema default is 3)
   figures::Style style_;
   bool render_ = false;
 };

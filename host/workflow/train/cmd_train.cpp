@@ -10,6 +10,7 @@
 #include "workflow/stage/command_line.hpp"
 #include "workflow/stage/commands.hpp"
 #include "core/units.hpp"
+#include "workflow/train/train_config.hpp"
 #include "workflow/train/training.hpp"
 
 namespace spreadmap {
@@ -94,7 +95,10 @@ int cmd_train(int argc, char **argv) {
   namespace po = boost::program_options;
   po::options_description d("train options");
   std::string table, inputs, outputs = "vs,rq", out, format = "table", split = "auto", split_column;
-  std::size_t folds = 5;
+  // The train stage's schema holds the defaults of both its settings and these options.
+  const SchemaView stage_schema = train_settings();
+  const auto stage_default = [&](const char *key) { return std::to_string(long(stage_schema.find(key)->def)); };
+  std::size_t folds = 0;
   std::vector<std::string> params;
   TrainRequest rq;
   cli::Common c;
@@ -107,9 +111,9 @@ int cmd_train(int argc, char **argv) {
       "auto (by size: holdout from 40 rows, kfold:5 from 12, loo below) | holdout (the study's 35/10) | kfold:K | "
       "loo | column:NAME")("split-column", po::value(&split_column),
                            "a column of train/test labels (= --split column:NAME)")(
-      "folds", cli::whole_number("folds", &folds, "a number of folds (2 or more)")->default_value("5"),
+      "folds", cli::whole_number("folds", &folds, "a number of folds (2 or more)")->default_value(stage_default("folds")),
       "K of a plain --split kfold")(
-      "seed", cli::whole_number("seed", &rq.seed, "a seed (a whole number, 0 or more)")->default_value("1"),
+      "seed", cli::whole_number("seed", &rq.seed, "a seed (a whole number, 0 or more)")->default_value(stage_default("seed")),
       "seed of the split")("param", po::value(&params)->multitoken(),
                            "surrogate parameter KEY=VALUE (see spreadmap plugins MODEL)")(
       "no-figures", "do not render parity.png")("format", po::value(&format)->default_value("table"), "table | json");

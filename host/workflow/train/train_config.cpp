@@ -52,11 +52,11 @@ TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, Plugi
   }
   if (cfg["inputs"]) c.inputs = names(cfg["inputs"]);
   if (cfg["outputs"]) c.outputs = names(cfg["outputs"]);
-  c.folds = setting_count(entry.settings, "folds", c.folds);
-  c.seed = setting_count(entry.settings, "seed", c.seed);
+  c.folds = setting_count(entry.settings, "folds");
+  c.seed = setting_count(entry.settings, "seed");
   if (cfg["split"] && cfg["split"].IsScalar()) {
     try {
-      c.validation = analysis::parse_validation(setting_text(entry.settings, "split", "auto"), c.folds);
+      c.validation = analysis::parse_validation(setting_text(entry.settings, "split"), c.folds);
     } catch (const std::exception &e) {
       diag.error(Location::of(file, cfg["split"]), "train.split", e.what(),
                  "auto (the default) chooses by size: holdout from " + std::to_string(analysis::holdout_from_rows) +

@@ -9,6 +9,7 @@
 #include "core/diagnostics.hpp"
 #include "analysis/validation.hpp"
 #include "core/registry.hpp"
+#include "core/schema.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/file/workflow.hpp"
 
@@ -19,8 +20,8 @@ struct TrainConfig {
   std::vector<std::string> inputs;                             // empty = the design's variables
   std::vector<std::string> outputs = {"vs", "rq"};
   analysis::Validation validation;  // split: auto unless given
-  std::size_t folds = 5;            // K of a plain `split: kfold`
-  std::uint64_t seed = 1;
+  std::size_t folds = 0;            // K of a plain `split: kfold` (the schema gives the default)
+  std::uint64_t seed = 0;
   bool render = true;
   figures::Style style;  // render: true | false | {width, vector}
 };
@@ -28,6 +29,9 @@ struct TrainConfig {
 // model: bpnn | [bpnn, gp]; params: {...} (one model) or params: {bpnn: {...}, gp: {...}};
 // inputs, outputs: lists of column names; split: auto | holdout | kfold:K | loo | column:NAME (see
 // analysis/validation.hpp); folds (K of a plain `kfold`); seed; render.
+// The stage's settings schema (also the defaults of `spreadmap train`'s --folds and --seed).
+SchemaView train_settings();
+
 TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, PluginRegistry &registry, Diagnostics &diag);
 
 }  // namespace spreadmap

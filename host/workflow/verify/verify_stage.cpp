@@ -70,8 +70,8 @@ class VerifyStage : public Stage {
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     style_ = figures::read_style(entry.config["render"], true, false, file, "verify.render", diag);
-    runs_ = setting_count(entry.settings, "replicates", default_runs);
-    rounds_ = setting_count(entry.settings, "rounds", 1);
+    runs_ = setting_count(entry.settings, "replicates");
+    rounds_ = setting_count(entry.settings, "rounds");
     const StageEntry *map = nullptr, *characterise = nullptr;
     for (std::size_t i = 0; i < wf.stages.size() && &wf.stages[i] != &entry; ++i) {
       if (wf.stages[i].kind == "map") map = &wf.stages[i], map_stage_ = i;
