@@ -4,6 +4,7 @@
 //  - floating-point peaks in double and float at 128, 256 and 512-bit width, once with fused
 //    multiply-adds (the processor's peak) and once with separate multiplies and adds (what the
 //    engine's loops can reach: they are built with -ffp-contract=off for bitwise reproducibility);
+//  - the divider's throughput (256-bit double divides and square roots);
 //  - read bandwidth from arrays that fit L1, L2, the last level and none of them.
 // Prints each figure and the machine. Usage: bench_machine_peaks [--seconds S] (per measurement, 0.3).
 #include <immintrin.h>
@@ -93,6 +94,37 @@ SPREADMAP_PEAK(peak_avx512_d, "avx512f", __m512d, _mm512_set1_pd, _mm512_fmadd_p
 SPREADMAP_PEAK(peak_avx512_f, "avx512f", __m512, _mm512_set1_ps, _mm512_fmadd_ps, _mm512_mul_ps, _mm512_add_ps,
                _mm512_storeu_ps, 16, float)
 
+// Divisions and square roots (256-bit double): the pair loop's 1/distance, slip direction and
+// reduced mass and radius go through the divider, which is far slower than the multipliers.
+__attribute__((target("avx2"))) double divider_avx_d(std::uint64_t n, bool square_root) {
+  __m256d a[12];
+  for (int k = 0; k < 12; ++k) a[k] = _mm256_set1_pd(1.5 + k * 1e-3);
+  const __m256d c = _mm256_set1_pd(2.0);
+  if (square_root) {
+    for (std::uint64_t i = 0; i < n; ++i)
+#pragma GCC unroll 12
+      for (int k = 0; k < 12; ++k) a[k] = _mm256_sqrt_pd(a[k]);
+  } else {
+    for (std::uint64_t i = 0; i < n; ++i)
+#pragma GCC unroll 12
+      for (int k = 0; k < 12; ++k) a[k] = _mm256_div_pd(c, a[k]);
+  }
+  double out[4], sum = 0;
+  for (auto &v : a) {
+    _mm256_storeu_pd(out, v);
+    sum += out[0] + out[1] + out[2] + out[3];
+  }
+  return sum;
+}
+
+// Cycles per 256-bit instruction (one core) of the divider.
+double divider_cycles(bool square_root, double hz) {
+  double sink = 0;
+  const auto [s, reps] = timed([&](std::uint64_t n) { sink += divider_avx_d(n, square_root); });
+  if (sink == 42) std::puts("");
+  return s * hz / (double(reps) * 12.0);
+}
+
 using PeakFn = double (*)(std::uint64_t, bool);
 
 // Flops per second of one kernel on `threads` threads (each its own accumulators).
@@ -180,6 +212,10 @@ int main(int argc, char **argv) {
     std::printf("%-16s %11.1f GF %11.1f    %11.1f GF %11.1f GF\n", k.name, fused / 1e9, fused / hz, split / 1e9,
                 all / 1e9);
   }
+
+  if (__builtin_cpu_supports("avx2"))
+    std::printf("\n256-bit double divide: %.1f cycles each (4 lanes); square root: %.1f cycles each\n",
+                divider_cycles(false, hz), divider_cycles(true, hz));
 
   std::printf("\n%-22s %16s %16s\n", "read bandwidth", "1 core", (std::to_string(cores) + " cores").c_str());
   const std::pair<const char *, std::size_t> sizes[] = {
