@@ -26,12 +26,12 @@ struct TrainConfig {
   figures::Style style;  // render: true | false | {width, vector}
 };
 
-// model: bpnn | [bpnn, gp]; params: {...} (one model) or params: {bpnn: {...}, gp: {...}};
-// inputs, outputs: lists of column names; split: auto | holdout | kfold:K | loo | column:NAME (see
-// analysis/validation.hpp); folds (K of a plain `kfold`); seed; render.
 // The stage's settings schema (also the defaults of `spreadmap train`'s --folds and --seed).
 SchemaView train_settings();
 
+// model: bpnn | [bpnn, gp]; params: {...} (one model) or params: {bpnn: {...}, gp: {...}};
+// inputs, outputs: lists of column names; split: auto | holdout | kfold:K | loo | column:NAME (see
+// analysis/validation.hpp); folds (K of a plain `kfold`); seed; render.
 TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, PluginRegistry &registry, Diagnostics &diag);
 
 }  // namespace spreadmap
