@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <signal.h>
+#include <spreadmap/digest.hpp>
 #include <unistd.h>
 
 #include <atomic>
@@ -159,13 +160,7 @@ std::string read_text(const fs::path &path) {
   return s.str();
 }
 
-std::string stable_hash(const std::string &text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
+std::string stable_hash(const std::string &text) { return content_digest(text); }
 
 }  // namespace spreadmap
 

@@ -2,7 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <spreadmap/digest.hpp>
+
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <stdexcept>
 
 #include "core/suggest.hpp"
@@ -37,6 +42,25 @@ std::string fmt_num(double v) {
 std::string range_text(const sm_param_v1 &p) {
   return "[" + fmt_num(p.min) + ", " + fmt_num(p.max) + "]" +
          (p.unit && std::string(p.unit) != "-" ? std::string(" ") + p.unit : "");
+}
+
+// A path parameter (unit "path", spreadmap/params.hpp): resolved against the folder of the file that
+// names it, refused when missing, passed on absolute with its content digest beside it.
+void resolve_file_param(const std::string &key, nlohmann::json &out, const Location &at, const std::string &file,
+                        const std::string &key_path, Diagnostics &diag) {
+  namespace fs = std::filesystem;
+  const fs::path name = out[key].get<std::string>();
+  const fs::path resolved = name.is_absolute() || file.empty() ? name : fs::path(file).parent_path() / name;
+  if (name.empty() || !fs::is_regular_file(resolved)) {
+    diag.error(at, key_path, name.empty() ? std::string("no file named") : fmt::format("no file {}", resolved.string()),
+               "a file's name is relative to the folder of the file that names it");
+    out[key] = nullptr;
+    return;
+  }
+  std::ifstream in(resolved, std::ios::binary);
+  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  out[key] = fs::absolute(resolved).lexically_normal().string();
+  out[key + "_digest"] = content_digest(bytes);
 }
 
 }  // namespace
@@ -189,6 +213,8 @@ nlohmann::json validate_params(const SchemaView &schema, const YAML::Node &secti
         continue;
       }
       out[key] = validate_value(*p, kv.second, file, prefix + key, diag);
+      if (p->type == SM_STRING && p->unit && std::string(p->unit) == "path" && out[key].is_string())
+        resolve_file_param(key, out, Location::of(file, kv.second), file, prefix + key, diag);
     }
   }
   if (fill) fill_defaults(schema, out, Location::of(file, section), key_path, diag);

@@ -2,7 +2,12 @@
 // line:column of the offending node and the key path; valid values come out in SI with every
 // missing key filled from its default.
 #include <gtest/gtest.h>
+#include <spreadmap/digest.hpp>
 #include <spreadmap/params.hpp>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "core/error.hpp"
 #include "core/schema.hpp"
@@ -196,4 +201,27 @@ TEST(CoreSchema, JsonAndTableDescriptionsListEveryParameter) {
   const std::string table = sm::describe_schema(d);
   for (const auto &p : params) EXPECT_TRUE(contains(table, p.name)) << p.name;
   EXPECT_TRUE(contains(table, "required"));
+}
+
+TEST(CoreSchema, AFileParameterIsResolvedBesideItsYamlFileAndCarriesItsDigest) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / ("spreadmap_schema_path_" + std::to_string(::getpid()));
+  fs::create_directories(dir / "parts");
+  std::ofstream(dir / "parts" / "blade.stl") << "solid b\nendsolid b\n";
+  constexpr sm_param_v1 with_file[] = {sm::file_path("file", "the part")};
+  const sm::SchemaView file_schema{with_file, std::size(with_file)};
+  sm::Diagnostics diag;
+  const std::string yaml_file = (dir / "wf.yaml").string();
+  const auto values =
+      sm::validate_params(file_schema, YAML::Load("file: parts/blade.stl"), yaml_file, "scene.spreader", diag);
+  EXPECT_TRUE(diag.empty());
+  EXPECT_EQ(values["file"], (dir / "parts" / "blade.stl").string());
+  EXPECT_EQ(values["file_digest"], sm::content_digest("solid b\nendsolid b\n"));
+  sm::validate_params(file_schema, YAML::Load("\nfile: parts/blades.stl"), yaml_file, "scene.spreader", diag);
+  ASSERT_EQ(diag.errors().size(), 1u);
+  EXPECT_TRUE(contains(diag.errors()[0], "error: " + yaml_file + ":2:7: scene.spreader.file: no file " +
+                                             (dir / "parts" / "blades.stl").string()))
+      << diag.errors()[0];
+  EXPECT_TRUE(contains(diag.errors()[0], "relative to the folder of the file that names it")) << diag.errors()[0];
+  fs::remove_all(dir);
 }

@@ -219,6 +219,32 @@ TEST_F(Scenes, ARollerWallSpreadsALayerNoThickerThanItsGap) {
   EXPECT_GT(ahead, 20u);
 }
 
+TEST_F(Scenes, AFixedMeshWallHoldsPowderOutOfItsPart) {
+  // examples/scenes/mesh_ridge.yaml: 300 spheres of d = 200 um poured onto a 45-degree roof (ridge.stl,
+  // a spreader wall that never travels) centred at x = 5 mm, 4 mm wide, 2 mm high. At the end every
+  // sphere is outside the roof: its centre at least r - overlap_max(4 um) from both faces.
+  const std::size_t n = simulate("mesh_ridge.yaml");
+  ASSERT_EQ(n, 4u);
+  const auto rows = particles(n - 1);
+  std::ifstream in(dir_ / "out" / "summary.json");
+  EXPECT_EQ(rows.size() + nlohmann::json::parse(in)["removed"].get<std::size_t>(), 300u);
+  double deepest = 0;  // how far a sphere reaches into the roof [m]
+  std::size_t on_faces = 0;
+  for (const auto &r : rows) {
+    const double u = r.at("x") - 5e-3, z = r.at("z"), radius = r.at("radius");
+    // signed distance of the centre to the roof's faces z = 2 mm - |u| (each face's outward normal
+    // is (+-1, 0, 1)/sqrt 2), where the centre lies over the roof
+    if (std::fabs(u) > 2e-3) continue;
+    const double distance = (z - (2e-3 - std::fabs(u))) / std::numbers::sqrt2;
+    deepest = std::max(deepest, radius - distance);
+    if (distance < radius + 10e-6) ++on_faces;
+  }
+  std::printf("%zu spheres touch the roof's faces; the deepest reaches %.2f um into it\n", on_faces,
+              deepest * 1e6);
+  EXPECT_LT(deepest, 4e-6) << "no deeper than the law's largest overlap";
+  EXPECT_GT(on_faces, 5u) << "spheres rest on the faces, piled between the ridge and the end walls";
+}
+
 namespace {
 
 // A scene around a particle file `csv` (two 1 mm spheres by default) and extra YAML lines.

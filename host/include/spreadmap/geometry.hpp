@@ -120,3 +120,8 @@ template <class G> struct GeometryOps {
 #define SPREADMAP_SPREADER_PLUGIN(GEOMETRY, NAME, VERSION, SUMMARY)                                        \
   static_assert(std::is_trivially_copyable_v<GEOMETRY>, "a spreader geometry must be trivially copyable"); \
   SPREADMAP_PLUGIN("spreader", GEOMETRY, NAME, VERSION, SUMMARY, &::spreadmap::detail::GeometryOps<GEOMETRY>::table)
+
+// A geometry that keeps its data in host memory (a triangle mesh behind a pointer) runs on the CPU
+// only: it need not be trivially copyable, and its plugin is built with CPU_ONLY (no GPU kernels).
+#define SPREADMAP_SPREADER_PLUGIN_CPU(GEOMETRY, NAME, VERSION, SUMMARY) \
+  SPREADMAP_PLUGIN("spreader", GEOMETRY, NAME, VERSION, SUMMARY, &::spreadmap::detail::GeometryOps<GEOMETRY>::table)

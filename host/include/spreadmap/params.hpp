@@ -37,6 +37,16 @@ constexpr sm_param_v1 enumeration(const char *name, const char *choices, const c
 constexpr sm_param_v1 text(const char *name, const char *def, const char *doc) {
   return {name, SM_STRING, "-", 0, 0, 0, def, 0, nullptr, doc};
 }
+constexpr sm_param_v1 required_enumeration(const char *name, const char *choices, const char *doc) {
+  return {name, SM_ENUM, "-", 0, 0, 0, nullptr, 1, choices, doc};
+}
+// A file the plugin reads (unit "path", required). The host resolves it against the folder of the file
+// that names it, refuses one that is missing, and passes it absolute, with `<name>_digest`: the
+// file's content_digest (spreadmap/digest.hpp) when the input was validated, so that a changed file
+// makes a different case and the plugin can refuse a file changed since.
+constexpr sm_param_v1 file_path(const char *name, const char *doc) {
+  return {name, SM_STRING, "path", 0, 0, 0, nullptr, 1, nullptr, doc};
+}
 constexpr sm_param_v1 table(const char *name, const char *doc) {
   return {name, SM_TABLE, "-", 0, 0, 0, nullptr, 0, nullptr, doc};
 }

@@ -34,8 +34,8 @@ engine::Settings settings_of(const SceneFile &s) {
 
 // With backend cuda (or auto on a machine with a GPU) the simulation steps on the GPU: the kernels
 // of its pair law, of each plane's law (in the order the planes were added) and of each spreader
-// with its law. Cylinders have no GPU kernels, and fixed particles and attraction across a gap step
-// on the CPU only: such a scene steps on the CPU (backend auto).
+// with its law. Cylinders and CPU-only spreaders (a mesh) have no GPU kernels, and fixed particles and
+// attraction across a gap step on the CPU only: such a scene steps on the CPU (backend auto).
 template <class Real>
 void attach_backend(engine::Simulation<Real> &sim, const SceneFile &s, const SceneRun<Real> &run,
                     const std::vector<const PluginInstance *> &plane_laws,
@@ -47,6 +47,12 @@ void attach_backend(engine::Simulation<Real> &sim, const SceneFile &s, const Sce
     spdlog::warn("{}: cylinder walls step on the CPU only; the scene runs on the CPU", s.file.string());
     return;
   }
+  for (const auto &spreader : run.spreaders)
+    if (!(spreader.instance->plugin()->descriptor->backends & SM_BACKEND_CUDA) && s.backend == "auto") {
+      spdlog::info("{}: spreader/{} steps on the CPU only; the scene runs on the CPU", s.file.string(),
+                   spreader.instance->plugin()->descriptor->name);
+      return;  // an explicit cuda is refused by spreader_kernels, naming the plugin
+    }
   if (sim.fixed_count() > 0 && s.backend == "auto") {  // an explicit cuda is refused by set_backend
     spdlog::info("{}: fixed particles step on the CPU only; the scene runs on the CPU", s.file.string());
     return;
