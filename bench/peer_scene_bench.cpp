@@ -35,6 +35,8 @@
 #include <string>
 #include <thread>
 #include <time.h>
+#include <csignal>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
 
@@ -63,6 +65,8 @@ struct Options {
   std::vector<int> threads{1, 2};
   double omega = 0;
   std::string backend = "cpu";
+  bool busy = false;        // a busy process beside the runs, for the runs' whole time
+  bool fixed_team = false;  // every step on all threads (no team tuner)
   double liggghts = liggghts_recorded;
   std::string liggghts_label = "the peers' recorded figure (serial, 2-core machine), NOT measured in this run";
 };
@@ -72,7 +76,7 @@ struct Options {
       stderr,
       "bench_peer_scene: %s\nusage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] "
       "[--steps N] [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT] "
-      "[--backend cpu|cuda]\n",
+      "[--backend cpu|cuda] [--busy] [--fixed-team]\n",
       why);
   std::exit(2);
 }
@@ -93,6 +97,8 @@ Options parse(int argc, char **argv) {
     else if (a == "--repeats") o.repeats = std::max(1, std::stoi(value()));
     else if (a == "--omega") o.omega = std::stod(value());
     else if (a == "--backend") o.backend = value();
+    else if (a == "--busy") o.busy = true;
+    else if (a == "--fixed-team") o.fixed_team = true;
     else if (a == "--liggghts") o.liggghts = std::stod(value());
     else if (a == "--liggghts-label") o.liggghts_label = value();
     else if (a == "--threads") {
@@ -136,6 +142,24 @@ double median(std::vector<double> v) {
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+
+// A process that keeps one core busy until it is killed (--busy): another user's job on the machine.
+struct BusyProcess {
+  pid_t pid = -1;
+  BusyProcess() {
+    pid = ::fork();
+    if (pid == 0) {
+      volatile unsigned long spin = 0;
+      for (;;) spin = spin + 1;
+    }
+  }
+  ~BusyProcess() {
+    if (pid > 0) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, nullptr, 0);
+    }
+  }
+};
 
 struct Timing {
   double particle_steps_per_second;
@@ -210,12 +234,20 @@ int main(int argc, char **argv) {
       opt.repeats);
   std::fflush(stdout);
 
+  std::printf("threads: %s; %s\n",
+              opt.fixed_team ? "every step on the run's thread count (--fixed-team)"
+                             : "the team tuner chooses up to the run's thread count",
+              opt.busy ? "a busy process runs beside the timed runs (--busy)" : "no other process started");
+  std::fflush(stdout);
+  std::unique_ptr<BusyProcess> busy;
+  if (opt.busy) busy = std::make_unique<BusyProcess>();
   std::vector<std::vector<Timing>> timings(opt.threads.size());
   for (int r = 0; r < opt.repeats; ++r) {
     for (std::size_t k = 0; k < opt.threads.size(); ++k) {
       omp_set_num_threads(opt.threads[k]);
       auto run = sm::make_spreading_run<double>(scene, registry, heap, opt.workflow);
       auto &sim = run->sim;
+      sim.tune_threads(!opt.fixed_team);
       if (opt.skip > 0) sim.load_checkpoint(checkpoint);
       const auto before = sim.counters();
       const auto t0 = std::chrono::steady_clock::now();
@@ -252,6 +284,7 @@ int main(int argc, char **argv) {
       timings[k].push_back(std::move(t));
     }
   }
+  busy.reset();
   std::error_code ec;
   fs::remove(checkpoint, ec);
 

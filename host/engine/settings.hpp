@@ -51,6 +51,11 @@ struct Settings {
   // depend on it (the engine is deterministic for any thread count). 0: always all threads.
   std::size_t parallel_min_particles = 2000;
 
+  // The thread count of the steps follows measurement (engine/team_tuner.hpp): fewer threads when
+  // another process slows one of them down, all of them again when it is gone. Results do not depend
+  // on it. false: every step on all threads (benchmarks of a fixed team).
+  bool tune_threads = true;
+
   // Sleeping particles (off by default). A particle below x = set_sleep_region()'s bound that is slower
   // than sleep_speed (the surface speed of its spin too) at sleep_checks checks in a row, one every
   // sleep_check_every steps, falls asleep: it is no longer integrated (it stays exactly where it is, at

@@ -20,28 +20,28 @@ namespace spreadmap::engine {
 namespace {
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-// Runs the enclosing scope on one thread when asked (small scenes), restoring the caller's thread
-// count (the OpenMP setting the thread team follows) on exit, exceptions included. Affects only the
-// calling thread's runs.
-class SerialScope {
+// Runs the enclosing scope on at most `most` threads (0: as many as the caller's setting), restoring
+// the caller's thread count (the OpenMP setting the thread team follows) on exit, exceptions
+// included. Affects only the calling thread's runs.
+class TeamSizeScope {
  public:
-  explicit SerialScope(bool serial) {
+  explicit TeamSizeScope(int most) {
 #ifdef _OPENMP
-    if (serial && omp_get_max_threads() > 1) {
+    if (most > 0 && omp_get_max_threads() > most) {
       saved_ = omp_get_max_threads();
-      omp_set_num_threads(1);
+      omp_set_num_threads(most);
     }
 #else
-    (void)serial;
+    (void)most;
 #endif
   }
-  ~SerialScope() {
+  ~TeamSizeScope() {
 #ifdef _OPENMP
     if (saved_ > 0) omp_set_num_threads(saved_);
 #endif
   }
-  SerialScope(const SerialScope &) = delete;
-  SerialScope &operator=(const SerialScope &) = delete;
+  TeamSizeScope(const TeamSizeScope &) = delete;
+  TeamSizeScope &operator=(const TeamSizeScope &) = delete;
 
  private:
   int saved_ = 0;
@@ -590,7 +590,7 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> 
 // subset runs on this thread: a team would cost more than the work.
 template <class Real>
 void Simulation<Real>::subset_forces(const ContactLaw &law, const Particles<Real> &sv, WallContacts<Real> &sw) {
-  const SerialScope serial(sw.n < subset_parallel_from);
+  const TeamSizeScope serial(sw.n < subset_parallel_from ? 1 : 0);
   if constexpr (std::is_same_v<Real, double>) law.ops->walls_f64(law.self, &sv, &sw);
   else law.ops->walls_f32(law.self, &sv, &sw);
 }
@@ -726,7 +726,7 @@ template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot<Real> 
   const Particles<Real> sv = subset_.particles(v);
   WallContacts<Real> sw = subset_.walls();
   {
-    const SerialScope serial(sw.n < subset_parallel_from);  // a team would cost more than the work
+    const TeamSizeScope serial(sw.n < subset_parallel_from ? 1 : 0);  // a team would cost more than the work
     evaluate(sv, sw);
   }
   subset_.scatter(p, ge.slot.overlap, ge.slot.hist);
@@ -928,7 +928,10 @@ template <class Real> void Simulation<Real>::step() {
   }
   const double timed_before = prof.total();
   const auto &p = state_.particles;
-  const SerialScope serial(p.size() < state_.settings.parallel_min_particles);
+  const bool serial = p.size() < state_.settings.parallel_min_particles;
+  const bool tuned = state_.settings.tune_threads && !serial;
+  if (tuned && tuner_.most() != max_team_size()) tuner_.reset(max_team_size());
+  const TeamSizeScope team(serial ? 1 : tuned ? tuner_.threads() : 0);
   prepare();
   struct EqualSharesAfter {
     ~EqualSharesAfter() { this_thread_team_object().set_cuts(nullptr, 0, 0); }
@@ -965,6 +968,7 @@ template <class Real> void Simulation<Real>::step() {
   const double wall = since(t0);
   prof.other += wall - (prof.total() - timed_before);  // set-up, checks, sleeping
   state_.counters.wall_seconds += wall;
+  if (tuned) tuner_.stepped(wall);
 }
 
 template <class Real> void Simulation<Real>::run_steps(std::uint64_t n) {

@@ -21,6 +21,7 @@
 #include <engine/particle_subset.hpp>
 #include <engine/settings.hpp>
 #include <engine/step_backend.hpp>
+#include <engine/team_tuner.hpp>
 #include <engine/step_state.hpp>
 #include <engine/walls.hpp>
 
@@ -102,6 +103,7 @@ template <class Real = double> class Simulation {
   std::size_t sleeping_count() const { return asleep_; }
   // Integrate rotation even when no law makes torque (benchmarks: the cost of what is skipped).
   void force_rotation(bool on);
+  void tune_threads(bool on) { state_.settings.tune_threads = on; }  // Settings::tune_threads
 
   // --- figures -------------------------------------------------------------------------------
   // The particles that left the domain: removed, or to be removed at the next list build (state()
@@ -185,6 +187,7 @@ template <class Real = double> class Simulation {
   std::vector<Real> inflated_radius_;                     // radii + margin for the geometry search
   std::vector<std::vector<std::uint32_t>> thread_index_;  // per-thread index lists
   ParticleSubset<Real> subset_;
+  TeamTuner tuner_;  // how many threads the steps use (Settings::tune_threads)
 };
 
 extern template class Simulation<double>;

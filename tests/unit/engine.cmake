@@ -14,3 +14,6 @@ spreadmap_test(unit engine_plugin_law
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_plugin_law_test.cpp
   LIBS spreadmap_engine)
 add_dependencies(test_unit_engine_plugin_law plugin_contact_hooke_slider)
+spreadmap_test(unit engine_team_tuner
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_team_tuner_test.cpp
+  LIBS spreadmap_engine)
