@@ -26,6 +26,10 @@ TEST(LayerThickness, ThreeLayersOfAKnownBed) {
   EXPECT_NEAR(t[0].deposited, 45 * um, 1e-15);
   EXPECT_NEAR(t[1].deposited, 35 * um, 1e-15);
   EXPECT_NEAR(t[2].deposited, 32 * um, 1e-15);
+  // the solid added over the platform's drop (50 um), layer 1 over its gap (100 um)
+  EXPECT_NEAR(t[0].relative_density, 0.45, 1e-12);
+  EXPECT_NEAR(t[1].relative_density, 0.70, 1e-12);
+  EXPECT_NEAR(t[2].relative_density, 0.64, 1e-12);
 }
 
 // Simple cubic rows of 50 um spheres, one row per pass with the spreader 50 um above the last row's
@@ -39,6 +43,7 @@ TEST(LayerThickness, OneLatticeRowPerPass) {
   for (const auto &layer : t) {
     EXPECT_NEAR(layer.effective, d, 1e-15);
     EXPECT_NEAR(layer.deposited, row_solid, 1e-15);
+    EXPECT_NEAR(layer.relative_density, std::numbers::pi / 6, 1e-12) << "a simple cubic lattice's packing";
   }
 }
 

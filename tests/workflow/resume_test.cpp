@@ -298,6 +298,15 @@ TEST(Layers, TheSecondLayerAddsPowderAndEverySphereIsCounted) {
   EXPECT_EQ(rows[1][1], "1");
   EXPECT_EQ(rows[2][1], "2");
   EXPECT_GT(std::stod(rows[2][in_region]), std::stod(rows[1][in_region])) << "the second layer added no powder";
+  // a layer's relative density: the solid the pass added over the platform's drop (0.3 mm), layer 1's
+  // over its gap (0.5 mm)
+  const std::size_t solid = column(rows[0], "solid_thickness"), density = column(rows[0], "layer_relative_density");
+  ASSERT_LT(density, rows[0].size());
+  const double s1 = std::stod(rows[1][solid]), s2 = std::stod(rows[2][solid]);
+  EXPECT_NEAR(std::stod(rows[1][density]), s1 / 0.5e-3, 1e-9);
+  EXPECT_NEAR(std::stod(rows[2][density]), (s2 - s1) / 0.3e-3, 1e-9);
+  EXPECT_GT(std::stod(rows[2][density]), 0.0);
+  EXPECT_LT(std::stod(rows[2][density]), 0.74) << "no denser than the closest packing of spheres";
 
   const auto cj = nlohmann::json::parse(slurp(c / "case.json"));
   ASSERT_EQ(cj.at("layers").size(), 2u);
@@ -330,6 +339,7 @@ TEST(Layers, TheSecondLayerAddsPowderAndEverySphereIsCounted) {
   ASSERT_EQ(single_rows.size(), 2u);
   EXPECT_EQ(column(single_rows[0], "layer"), single_rows[0].size());
   EXPECT_EQ(column(single_rows[0], "layer_height"), single_rows[0].size());
+  EXPECT_EQ(column(single_rows[0], "layer_relative_density"), single_rows[0].size());
   fs::remove_all(dir);
 }
 

@@ -8,7 +8,10 @@
 //                                           bare plate, so layer 1's is the gap)
 //   deposited_thickness_k = S_k - S_(k-1)   the solid the pass added: S = solid volume in the sampling
 //                                           region / its area (solid_thickness), S_0 = 0
-// Both in metres; NaN where a value they need is undefined.
+//   layer_relative_density_k = deposited_thickness_k / (e_k - e_(k-1))   with e_0 = 0: the solid the
+//                                           pass added over the platform's drop (layer 1: over its
+//                                           gap), as multi-layer experiments measure a layer's density
+// Thicknesses in metres, the density a fraction; NaN where a value they need is undefined.
 #pragma once
 #include <vector>
 
@@ -22,6 +25,7 @@ struct LayerBed {
 
 struct LayerThickness {
   double effective = 0, deposited = 0;  // [m]
+  double relative_density = 0;          // [-]
 };
 
 // One entry per layer, in layer order (layers[0] is layer 1).

@@ -2,8 +2,8 @@
 // case folder), gathered in metrics.csv with one row per case and the unit of every column in
 // metrics.units.json. A multi-layer case (scene.layers) has one row per layer, evaluated in its
 // layer_K folder, and metrics.csv then a `layer` column after `case`. A case whose state and
-// settings did not change is not evaluated again. Multi-layer rows also get effective_thickness and
-// deposited_thickness, from consecutive layers (bed_thickness.hpp). The verify loop's characterise
+// settings did not change is not evaluated again. Multi-layer rows also get effective_thickness,
+// deposited_thickness and layer_relative_density, from consecutive layers (bed_thickness.hpp). The verify loop's characterise
 // (`verify: {rounds: N}`) also measures the verify runs the loop added to the manifest
 // (`verify_cases`) of the rounds before it, so that the model is refitted with them; run alone
 // (`--only characterise`), all of them, as the loop's last characterise did.
@@ -109,7 +109,8 @@ class CharacteriseStage : public Stage {
   }
 
  private:
-  // effective_thickness and deposited_thickness of each layer of one multi-layer case (bed_thickness.hpp),
+  // effective_thickness, deposited_thickness and layer_relative_density of each layer of one multi-layer
+  // case (bed_thickness.hpp),
   // from its layer rows starting at `rows`; metrics.csv only (each layer's metrics.json stays its own).
   static void add_layer_thicknesses(StageContext &ctx, const Scene &scene, const fs::path &dir,
                                     std::vector<nlohmann::json>::iterator rows) {
@@ -131,7 +132,9 @@ class CharacteriseStage : public Stage {
       const auto value = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
       row["metrics"]["effective_thickness"] = value(thickness[k - 1].effective);
       row["metrics"]["deposited_thickness"] = value(thickness[k - 1].deposited);
+      row["metrics"]["layer_relative_density"] = value(thickness[k - 1].relative_density);
       row["units"]["effective_thickness"] = row["units"]["deposited_thickness"] = "m";
+      row["units"]["layer_relative_density"] = "-";
     }
   }
 

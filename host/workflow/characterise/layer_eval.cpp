@@ -135,6 +135,7 @@ const std::vector<std::string> &standard_metric_order() {
                                                  "layer_height",
                                                  "effective_thickness",
                                                  "deposited_thickness",
+                                                 "layer_relative_density",
                                                  "packing_top",
                                                  "packing_bulk",
                                                  "top_thickness"};

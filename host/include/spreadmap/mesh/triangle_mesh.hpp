@@ -66,6 +66,7 @@ class TriangleMesh {
           const std::size_t cell = static_cast<std::size_t>((i * dims_[1] + j) * dims_[2] + k);
           for (std::uint32_t s = cell_start_[cell]; s < cell_start_[cell + 1]; ++s) {
             const std::uint32_t t = cell_items_[s];
+            if ((found && t == best_t) || !(box_distance2(t, q) <= best)) continue;  // seen, or too far
             const auto &c = corner_[t];
             const ClosestPoint cp = closest_point_on_triangle(p, vertex_[c[0]], vertex_[c[1]], vertex_[c[2]]);
             const V3 v = p - cp.point;
@@ -139,6 +140,18 @@ class TriangleMesh {
     return {side * length, v * (side / length), cp.point};
   }
 
+  // Squared distance from q to triangle t's box: a triangle whose box is farther than the nearest
+  // point found so far cannot hold a nearer one.
+  double box_distance2(std::uint32_t t, const double q[3]) const {
+    double d2 = 0;
+    for (int d = 0; d < 3; ++d) {
+      const double below = box_[t][d] - q[d], above = q[d] - box_[t][d + 3];
+      const double out = below > 0 ? below : above > 0 ? above : 0.0;
+      d2 += out * out;
+    }
+    return d2;
+  }
+
   // Corners that coincide exactly become one vertex: what tells edges and corners apart.
   void weld(const std::vector<Triangle> &triangles) {
     std::map<Point, std::uint32_t> index;
@@ -191,9 +204,11 @@ class TriangleMesh {
     // A triangle's middle box extent is its width: a long strip (a roller's facet) crosses many cells
     // along its length but stays one cell wide.
     std::vector<double> width(corner_.size());
+    box_.resize(corner_.size());
     for (std::size_t t = 0; t < corner_.size(); ++t) {
       std::array<double, 3> a, b;
       box_of(t, a, b);
+      box_[t] = {a[0], a[1], a[2], b[0], b[1], b[2]};
       std::array<double, 3> e{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
       std::sort(e.begin(), e.end());
       width[t] = e[1];
@@ -287,7 +302,8 @@ class TriangleMesh {
   std::vector<V3> vertex_;
   std::vector<std::array<std::uint32_t, 3>> corner_;
   std::vector<V3> face_normal_;
-  std::vector<std::array<V3, 3>> edge_normal_;  // per triangle, edge k from corner k to corner k + 1
+  std::vector<std::array<V3, 3>> edge_normal_;
+  std::vector<std::array<double, 6>> box_;  // per triangle: its box, lo then hi  // per triangle, edge k from corner k to corner k + 1
   std::vector<V3> vertex_normal_;
   std::array<double, 3> lo_{}, hi_{};
   double cell_ = 1;
