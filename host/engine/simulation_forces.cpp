@@ -1,0 +1,287 @@
+// Simulation's forces: the pair law over the list, the plane walls and the geometries (spreaders).
+#include <engine/cell_grid.hpp>
+#include <engine/errors.hpp>
+#include <engine/simulation.hpp>
+#include <engine/neighbour_listing.hpp>
+#include <engine/stability.hpp>
+#include <engine/team_size_scope.hpp>
+#include <engine/thread_team.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace spreadmap::engine {
+
+// ---------------------------------------------------------------------------------------------
+// forces
+
+template <class Real> Particles<Real> Simulation<Real>::view() {
+  auto &p = state_.particles;
+  Particles<Real> v;
+  v.n = static_cast<std::uint32_t>(p.size());
+  v.x = p.x.data();
+  v.y = p.y.data();
+  v.z = p.z.data();
+  v.vx = p.vx.data();
+  v.vy = p.vy.data();
+  v.vz = p.vz.data();
+  v.wx = p.wx.data();
+  v.wy = p.wy.data();
+  v.wz = p.wz.data();
+  v.r = p.r.data();
+  v.m = p.m.data();
+  v.fx = p.fx.data();
+  v.fy = p.fy.data();
+  v.fz = p.fz.data();
+  v.tx = p.tx.data();
+  v.ty = p.ty.data();
+  v.tz = p.tz.data();
+  for (int a = 0; a < 3; ++a) {
+    v.box_lo[a] = Real(state_.domain.lo[a]);
+    v.box_hi[a] = Real(state_.domain.hi[a]);
+    v.periodic[a] = state_.domain.periodic[a] ? 1 : 0;
+  }
+  v.dt = Real(state_.dt);
+  v.t = Real(state_.time);
+  v.team = this_thread_team();
+  return v;
+}
+
+// The plane's overlap with every particle (kept for the overlap check) and the particles its law
+// must see: those touching it (or within its law's range across a gap) and those still holding
+// history from an earlier contact (the law clears it), in increasing order. A particle beyond reach
+// gets the overlap -range (0 for a law of touching contacts), which the law reads as apart.
+template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot<Real> &plane) {
+  auto &p = state_.particles;
+  const Real point[3] = {Real(plane.wall.point[0]), Real(plane.wall.point[1]), Real(plane.wall.point[2])};
+  const Real normal[3] = {Real(plane.wall.normal[0]), Real(plane.wall.normal[1]), Real(plane.wall.normal[2])};
+  WallSlot<Real> &s = plane.slot;
+  const unsigned history = s.history;
+  const std::size_t n = p.size();
+  const bool moving = plane.wall.velocity[0] != 0 || plane.wall.velocity[1] != 0 || plane.wall.velocity[2] != 0;
+  const Real floor = Real(0) - Real(law_range(plane.wall.law));
+  const int max_threads = max_team_size();
+  if (thread_index_.size() < std::size_t(max_threads)) thread_index_.resize(max_threads);
+  int teams = 1;
+  run_team(this_thread_team(), [&](TeamSlot team) {
+    if (team.thread == 0) teams = team.threads;
+    auto &mine = thread_index_[team.thread];
+    mine.clear();
+    const auto [lo, hi] = team_share(n, team);
+    for (std::size_t i = lo; i < hi; ++i) {
+      const Real overlap = plane_overlap(point, normal, p.x[i], p.y[i], p.z[i], p.r[i]);
+      s.overlap[i] = overlap > floor ? overlap : floor;
+      bool held = false;
+      for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
+      // a sleeping particle on a wall at rest stays as it is: no need to evaluate it
+      if ((overlap > floor || held) && (moving || p.mobile[i] != 0)) mine.push_back(static_cast<std::uint32_t>(i));
+    }
+  });
+  plane.near.clear();
+  for (int t = 0; t < teams; ++t) plane.near.insert(plane.near.end(), thread_index_[t].begin(), thread_index_[t].end());
+}
+
+// A plane's law over every particle at once, its records written in place: while no particle
+// sleeps, the subset of plane_contacts would only add copies (the substrate touches a good part of
+// a heap). A particle apart from the plane (beyond its law's range) gets overlap 0 (-range), which the
+// law reads as no contact (it clears any history). The normal and velocity records are the same for every particle:
+// written when they change, so that a step writes only the overlaps. Same bits as the subset.
+template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> &plane, const Particles<Real> &view) {
+  auto &p = state_.particles;
+  const Real point[3] = {Real(plane.wall.point[0]), Real(plane.wall.point[1]), Real(plane.wall.point[2])};
+  const Real normal[3] = {Real(plane.wall.normal[0]), Real(plane.wall.normal[1]), Real(plane.wall.normal[2])};
+  const Real velocity[3] = {Real(plane.wall.velocity[0]), Real(plane.wall.velocity[1]), Real(plane.wall.velocity[2])};
+  WallSlot<Real> &s = plane.slot;
+  const std::size_t n = p.size();
+  const std::array<Real, 6> records{normal[0], normal[1], normal[2], velocity[0], velocity[1], velocity[2]};
+  if (plane.records_for != n || plane.records != records) {
+    std::vector<Real> *columns[6] = {&s.nx, &s.ny, &s.nz, &s.vx, &s.vy, &s.vz};
+    for (int c = 0; c < 6; ++c) std::fill(columns[c]->begin(), columns[c]->end(), records[c]);
+    plane.records_for = n;
+    plane.records = records;
+  }
+  const unsigned history = s.history;
+  const double range = law_range(plane.wall.law);
+  const Real floor = Real(0) - Real(range);
+  std::uint32_t touching = 0;
+  run_team(this_thread_team(), [&](TeamSlot team) {
+    const auto [lo, hi] = team_share(n, team);
+    std::uint32_t mine = 0;
+    with_simd([&] {
+      mine = plane_overlaps(point, normal, p.x.data(), p.y.data(), p.z.data(), p.r.data(), s.overlap.data(), lo, hi,
+                            floor);
+    });
+    // apart: the law still runs for a particle that holds history from this plane, to clear it
+    for (std::size_t i = lo; i < hi && history > 0; ++i) {
+      bool held = false;
+      for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
+      mine += s.overlap[i] > floor || !held ? 0u : 1u;
+    }
+#pragma omp atomic
+    touching += mine;
+  });
+  s.touched = touching > 0;
+  if (!s.touched) return;
+  WallContacts<Real> w = s.view(n);
+  w.gap = Real(range);
+  if constexpr (std::is_same_v<Real, double>) plane.wall.law.ops->walls_f64(plane.wall.law.self, &view, &w);
+  else plane.wall.law.ops->walls_f32(plane.wall.law.self, &view, &w);
+}
+
+// One wall's law over a subset of particles gathered beforehand, then the forces added back. A small
+// subset runs on this thread: a team would cost more than the work.
+template <class Real>
+void Simulation<Real>::subset_forces(const ContactLaw &law, const Particles<Real> &sv, WallContacts<Real> &sw) {
+  const TeamSizeScope serial(sw.n < subset_parallel_from ? 1 : 0);
+  if constexpr (std::is_same_v<Real, double>) law.ops->walls_f64(law.self, &sv, &sw);
+  else law.ops->walls_f32(law.self, &sv, &sw);
+}
+
+template <class Real> void Simulation<Real>::compute_forces(StepProfile *prof) {
+  using clock = std::chrono::steady_clock;
+  auto t = clock::now();
+  auto lap = [&](double StepProfile::*part) {
+    if (!prof) return;
+    const auto now = clock::now();
+    prof->*part += std::chrono::duration<double>(now - t).count();
+    t = now;
+  };
+  auto &p = state_.particles;
+  const std::size_t n = p.size();
+  if (!forces_zeroed_) {
+    parallel_for(this_thread_team(), n, [&](long long i) {
+      p.fx[i] = 0;
+      p.fy[i] = 0;
+      p.fz[i] = 0;
+      p.tx[i] = 0;
+      p.ty[i] = 0;
+      p.tz[i] = 0;
+    });
+  }
+  forces_zeroed_ = false;
+  state_.forces_valid = true;
+  if (n == 0) return;
+  const Particles<Real> v = view();
+  const PairList<Real> l = state_.list.view();
+  if constexpr (std::is_same_v<Real, double>) state_.pair_law.ops->pairs_f64(state_.pair_law.self, &v, &l);
+  else state_.pair_law.ops->pairs_f32(state_.pair_law.self, &v, &l);
+  lap(&StepProfile::pairs);  // with the zeroing of the forces above
+
+  for (auto &pl : state_.planes) {
+    if (!pl.wall.active) continue;
+    if (asleep_ == 0 && state_.settings.planes_in_place) {
+      dense_plane_forces(pl, v);
+      continue;
+    }
+    plane_contacts(pl);
+    pl.slot.touched = !pl.near.empty();
+    if (pl.near.empty()) continue;
+    subset_.gather(p, pl.near, pl.slot.hist, pl.slot.history);
+    const Real normal[3] = {Real(pl.wall.normal[0]), Real(pl.wall.normal[1]), Real(pl.wall.normal[2])};
+    const Real velocity[3] = {Real(pl.wall.velocity[0]), Real(pl.wall.velocity[1]), Real(pl.wall.velocity[2])};
+    subset_.plane_records(pl.slot.overlap, normal, velocity);
+    const Particles<Real> sv = subset_.particles(v);
+    WallContacts<Real> sw = subset_.walls();
+    sw.gap = Real(law_range(pl.wall.law));
+    subset_forces(pl.wall.law, sv, sw);
+    subset_.scatter(p, pl.slot.overlap, pl.slot.hist);
+    if (asleep_ > 0)  // only a moving wall lists sleeping particles: it wakes those it touches
+      for (std::uint32_t i : pl.near)
+        if (p.mobile[i] == 0 && pl.slot.overlap[i] > 0) wake(i);
+  }
+  lap(&StepProfile::planes);
+  for (auto &ge : state_.geometries) {
+    // searched again when the geometry may have moved by a skin (the search does not change results)
+    if (!ge.near_valid || ge.speed * (state_.time - ge.near_since) > state_.skin) find_near_geometry(ge);
+    geometry_forces(ge, v);
+    ge.slot.touched = true;
+  }
+  lap(&StepProfile::geometries);
+}
+
+// The particles that may touch a geometry until it is searched again: those a sphere 3 skins larger
+// touches now. Until the next list build a particle moves at most 1 skin from where it was at the
+// last build (kick_and_drift), so at most 2 from where it was at the search; the geometry is searched
+// again once it may have moved 1 skin (its fastest surface speed x time). A geometry that gives no
+// bound on its speed is evaluated for every particle.
+template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot<Real> &ge) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  auto &p = state_.particles;
+  const std::size_t n = p.size();
+  ge.near.clear();
+  ge.near_valid = false;
+  const auto *ops = ge.geometry.ops;
+  const double speed = ops->max_surface_speed ? ops->max_surface_speed(ge.geometry.self) : inf;
+  if (n == 0 || !(state_.skin > 0) || !(speed >= 0 && speed < inf)) return;
+  const Real margin = Real(3 * state_.skin);
+  inflated_radius_.resize(n);
+  parallel_for(this_thread_team(), n, [&](long long i) { inflated_radius_[i] = p.r[i] + margin; });
+  Particles<Real> v = view();
+  v.r = inflated_radius_.data();
+  v.t = Real(state_.time + ge.geometry.time_shift);
+  WallContacts<Real> w = ge.slot.view(n);
+  if constexpr (std::is_same_v<Real, double>) ops->contacts_f64(ge.geometry.self, &v, &w);
+  else ops->contacts_f32(ge.geometry.self, &v, &w);
+  for (std::size_t i = 0; i < n; ++i)
+    if (w.overlap[i] > 0) ge.near.push_back(static_cast<std::uint32_t>(i));
+  std::fill(ge.slot.overlap.begin(), ge.slot.overlap.end(), Real(0));
+  if (ge.slot.history) {  // far particles touch nothing: no history (the law cleared it when they left)
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (k < ge.near.size() && ge.near[k] == i) {
+        ++k;
+        continue;
+      }
+      std::fill_n(ge.slot.hist.begin() + i * ge.slot.history, ge.slot.history, Real(0));
+    }
+  }
+  ge.near_valid = true;
+  ge.near_since = state_.time;
+  ge.speed = speed;
+}
+
+// Contacts and forces of one geometry, over its near particles only when they are known.
+template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot<Real> &ge, const Particles<Real> &v) {
+  auto &p = state_.particles;
+  const auto *ops = ge.geometry.ops;
+  const ContactLaw &law = ge.geometry.law;
+  auto evaluate = [&](const Particles<Real> &pv, WallContacts<Real> &w) {
+    Particles<Real> at = pv;  // the geometry's own clock
+    at.t = Real(state_.time + ge.geometry.time_shift);
+    if constexpr (std::is_same_v<Real, double>) {
+      ops->contacts_f64(ge.geometry.self, &at, &w);
+      law.ops->walls_f64(law.self, &pv, &w);
+    } else {
+      ops->contacts_f32(ge.geometry.self, &at, &w);
+      law.ops->walls_f32(law.self, &pv, &w);
+    }
+  };
+  if (!ge.near_valid) {
+    WallContacts<Real> w = ge.slot.view(p.size());
+    evaluate(v, w);
+    if (asleep_ > 0)
+      for (std::uint32_t i = 0; i < p.size(); ++i)
+        if (ge.slot.overlap[i] > 0) wake(i);
+    return;
+  }
+  if (ge.near.empty()) return;
+  subset_.gather(p, ge.near, ge.slot.hist, ge.slot.history);
+  const Particles<Real> sv = subset_.particles(v);
+  WallContacts<Real> sw = subset_.walls();
+  {
+    const TeamSizeScope serial(sw.n < subset_parallel_from ? 1 : 0);  // a team would cost more than the work
+    evaluate(sv, sw);
+  }
+  subset_.scatter(p, ge.slot.overlap, ge.slot.hist);
+  if (asleep_ > 0)  // a moving surface wakes what it touches
+    for (std::uint32_t i : ge.near)
+      if (ge.slot.overlap[i] > 0) wake(i);
+}
+
+
+template class Simulation<double>;
+template class Simulation<float>;
+
+}  // namespace spreadmap::engine
