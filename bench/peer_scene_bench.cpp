@@ -2,7 +2,7 @@
 // (workflows/peer_liggghts.yaml, the scene of the peers' LIGGGHTS runs): 5000 spheres of 250 um settled on a
 // 2.5 mm periodic strip, a 10 mm roller at 100 mm/s (omega 0), hooke_slider with LIGGGHTS' viscous
 // slider, the substrate plane, dt = 7.5e-7 s, double precision. The Simulation, its walls and its
-// plugins are built by the same code as a case of the simulate stage (workflow/scene/case_setup.hpp).
+// plugins are built by the same code as a case of the simulate stage (workflow/spreading/case_setup.hpp).
 //
 // It times `steps` spreading steps from the settled heap on each thread count, `repeats` times
 // (interleaved, so that a slow spell of the machine hits every thread count alike), and prints the
@@ -45,8 +45,8 @@
 #include <spreadmap/simd.hpp>
 #include "engine/vtp_io.hpp"
 #include "workflow/stage_table.hpp"
-#include "workflow/scene/case_setup.hpp"
-#include "workflow/scene/scene_section.hpp"
+#include "workflow/spreading/case_setup.hpp"
+#include "workflow/spreading/scene_section.hpp"
 #include "workflow/file/workflow.hpp"
 
 namespace sm = spreadmap;

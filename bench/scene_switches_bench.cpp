@@ -36,9 +36,9 @@
 #include "core/registry.hpp"
 #include "core/schema.hpp"
 #include "workflow/stage_table.hpp"
-#include "workflow/scene/case_setup.hpp"
+#include "workflow/spreading/case_setup.hpp"
 #include "workflow/characterise/layer_eval.hpp"
-#include "workflow/scene/scene_section.hpp"
+#include "workflow/spreading/scene_section.hpp"
 #include "workflow/file/workflow.hpp"
 
 namespace sm = spreadmap;

@@ -9,7 +9,7 @@
 #include "core/suggest.hpp"
 #include "workflow/stage/command_line.hpp"
 #include "workflow/stage/stage.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 #include "workflow/stage_table.hpp"
 
 namespace spreadmap::cli {

@@ -7,10 +7,10 @@
 #include "core/error.hpp"
 #include "workflow/calibrate/calibration_file.hpp"
 #include "workflow/stage/command_line.hpp"
-#include "workflow/scene_file/scene_build.hpp"
+#include "workflow/scene/scene_build.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap::cli {
 
@@ -41,8 +41,8 @@ int cmd_validate(int argc, char **argv) {
                   << " bulk tests)\n";
         continue;
       }
-      if (sm::scene_file::is_scene_document(root)) {
-        const auto loaded = sm::scene_file::load_scene(f, sm::PluginRegistry::global());
+      if (sm::scene::is_scene_document(root)) {
+        const auto loaded = sm::scene::load_scene(f, sm::PluginRegistry::global());
         std::cout << f << ": ok (scene file: " << loaded.particles.set.size() << " particles, "
                   << loaded.scene.walls.size() << " walls)\n";
         continue;

@@ -8,7 +8,7 @@
 #include "workflow/runner.hpp"
 #include "core/registry.hpp"
 #include "workflow/stage/stage.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap::cluster {
 

@@ -1,6 +1,6 @@
 // How many OpenMP threads a rank's case gets when --threads-per-rank is not given.
 #pragma once
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap::cluster {
 

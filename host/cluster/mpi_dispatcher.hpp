@@ -8,7 +8,7 @@
 #include "cluster/mpi_session.hpp"
 #include "workflow/executors/executor_hook.hpp"
 #include "workflow/stage/stage.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap::cluster {
 

@@ -10,10 +10,10 @@
 #include "workflow/executors/local_executor.hpp"
 #include "workflow/report/run_report.hpp"
 #include "workflow/run/run_lock.hpp"
-#include "workflow/scene/scene_section.hpp"
+#include "workflow/spreading/scene_section.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 #include "workflow/stage_table.hpp"
 
 namespace spreadmap {

@@ -5,7 +5,7 @@
 #include <optional>
 #include <vector>
 
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 #include "workflow/stage/stage.hpp"
 
 namespace spreadmap {

@@ -12,8 +12,8 @@
 
 #include "gpu/gpu_support.hpp"
 #include "workflow/stage_table.hpp"
-#include "workflow/scene/case_setup.hpp"
-#include "workflow/scene/scene_section.hpp"
+#include "workflow/spreading/case_setup.hpp"
+#include "workflow/spreading/scene_section.hpp"
 #include "workflow/file/workflow.hpp"
 
 namespace sm = spreadmap;

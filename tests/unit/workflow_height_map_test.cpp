@@ -1,5 +1,5 @@
-// scene.substrate.height_map (workflow/scene/substrate_height_map.hpp) and its CSV file
-// (workflow/scene/height_map_file.hpp): the grid read in any order and any unit, each malformed file
+// scene.substrate.height_map (workflow/spreading/substrate_height_map.hpp) and its CSV file
+// (workflow/spreading/height_map_file.hpp): the grid read in any order and any unit, each malformed file
 // refused at its line with the fix, the substrate's tops on the map, and a map changed after the scene
 // was resolved refused where it is read again. Through the binary: tests/workflow/data/bad/height_map_*.yaml.
 #include <fmt/format.h>
@@ -12,10 +12,10 @@
 
 #include "core/error.hpp"
 #include "unit/built_plugins.hpp"
-#include "workflow/scene/height_map_file.hpp"
-#include "workflow/scene/scene_section.hpp"
-#include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/scene/layer_feed.hpp"
+#include "workflow/spreading/height_map_file.hpp"
+#include "workflow/spreading/scene_section.hpp"
+#include "workflow/spreading/substrate_roughness.hpp"
+#include "workflow/spreading/layer_feed.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;
@@ -35,7 +35,7 @@ class HeightMap : public ::testing::Test {
     return dir / name;
   }
   // The map of `text`, and every error it gave, one per line.
-  std::optional<sm::scene::HeightField> read(const std::string &text, std::string &errors) {
+  std::optional<sm::powder::HeightField> read(const std::string &text, std::string &errors) {
     sm::Diagnostics diag;
     auto map = sm::parse_height_map(text, write("map.csv", text), "scene.substrate.height_map", diag);
     for (const auto &e : diag.errors()) errors += e + "\n";

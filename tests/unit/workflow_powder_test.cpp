@@ -1,4 +1,4 @@
-// scene.powder's size keys as users write them (workflow/scene/powder_sizes.hpp, size_table.hpp,
+// scene.powder's size keys as users write them (workflow/spreading/powder_sizes.hpp, size_table.hpp,
 // powder_cost.hpp): quantiles, a CSV sieve table with units in its header, coarse graining of every
 // size, the warnings said once (D10/D50/D90 that the family or the truncation misses, and a
 // distribution whose smallest particles make a case impractical) with the trade in numbers.
@@ -9,12 +9,12 @@
 #include <cmath>
 #include <fstream>
 
-#include "scene/size_fit.hpp"
+#include "powder/size_fit.hpp"
 #include "unit/built_plugins.hpp"
-#include "workflow/scene/powder_cost.hpp"
-#include "workflow/scene/powder_sizes.hpp"
-#include "workflow/scene/scene_section.hpp"
-#include "workflow/scene/coarse_grain.hpp"
+#include "workflow/spreading/powder_cost.hpp"
+#include "workflow/spreading/powder_sizes.hpp"
+#include "workflow/spreading/scene_section.hpp"
+#include "workflow/spreading/coarse_grain.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;
@@ -63,8 +63,8 @@ TEST(PowderSizes, QuantilesByMassGiveTheLeastSquaresLognormal) {
   EXPECT_EQ(s.powder.basis, "mass");
   EXPECT_DOUBLE_EQ(s.powder.d10, 20 * um);
   const auto d = sm::size_distribution(s.powder);
-  EXPECT_EQ(d.basis, sm::scene::FractionBasis::volume);
-  EXPECT_NEAR(d.sigma, std::log(45.0 / 20) / (2 * sm::scene::z_90), 1e-12);
+  EXPECT_EQ(d.basis, sm::powder::FractionBasis::volume);
+  EXPECT_NEAR(d.sigma, std::log(45.0 / 20) / (2 * sm::powder::z_90), 1e-12);
   EXPECT_NEAR(d.d50, std::cbrt(20.0 * 32 * 45) * um, 1e-12 * um);
   // 20/32/45 um miss the closest lognormal by 4.2 % (at D50): within the 5 % tolerance, no warning.
   EXPECT_TRUE(warnings_of(s.powder, ti64_powder).empty());
@@ -103,7 +103,7 @@ TEST(PowderSizes, ACsvSieveTableWithUnitsInItsHeaderResolvesToSiRows) {
   EXPECT_DOUBLE_EQ(s->powder.table[2]["fraction"].get<double>(), 0.30);
   const auto d = sm::size_distribution(s->powder);
   EXPECT_DOUBLE_EQ(d.lower(), 15 * um);
-  EXPECT_NEAR(d.cdf(25 * um, sm::scene::FractionBasis::volume), 0.25, 1e-12);
+  EXPECT_NEAR(d.cdf(25 * um, sm::powder::FractionBasis::volume), 0.25, 1e-12);
 }
 
 TEST(PowderSizes, CoarseGrainingScalesEverySizeOfTheDistribution) {
@@ -116,7 +116,7 @@ TEST(PowderSizes, CoarseGrainingScalesEverySizeOfTheDistribution) {
   EXPECT_DOUBLE_EQ(c.powder.d90, 90 * um);
   EXPECT_DOUBLE_EQ(c.powder.d_min, 20 * um);
   const auto a = sm::size_distribution(s.powder), b = sm::size_distribution(c.powder);
-  EXPECT_NEAR(b.quantile(0.5, sm::scene::FractionBasis::number) / a.quantile(0.5, sm::scene::FractionBasis::number),
+  EXPECT_NEAR(b.quantile(0.5, sm::powder::FractionBasis::number) / a.quantile(0.5, sm::powder::FractionBasis::number),
               2.0, 1e-9);
 }
 

@@ -1,5 +1,5 @@
-// scene.substrate.roughness (workflow/scene/substrate_roughness.hpp) and the case set-up on a rough
-// substrate (workflow/scene/layer_feed.hpp): the key parses beside the substrate's law keys and is
+// scene.substrate.roughness (workflow/spreading/substrate_roughness.hpp) and the case set-up on a rough
+// substrate (workflow/spreading/layer_feed.hpp): the key parses beside the substrate's law keys and is
 // refused, with file:line:column, key and fix, where it cannot run; the set-up's fixed spheres have the
 // requested R_q of their tops exactly, stand on the plate, are the same for the same seed, and the
 // spreader is raised to the mean plane + its gap; the first heap is fed onto them. The refusals
@@ -10,11 +10,11 @@
 #include <cmath>
 
 #include "unit/built_plugins.hpp"
-#include "workflow/scene/scene_section.hpp"
-#include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/scene/case_setup.hpp"
-#include "workflow/scene/coarse_grain.hpp"
-#include "workflow/scene/layer_feed.hpp"
+#include "workflow/spreading/scene_section.hpp"
+#include "workflow/spreading/substrate_roughness.hpp"
+#include "workflow/spreading/case_setup.hpp"
+#include "workflow/spreading/coarse_grain.hpp"
+#include "workflow/spreading/layer_feed.hpp"
 
 namespace sm = spreadmap;
 

@@ -1,4 +1,4 @@
-// The typed scene (workflow/scene/scene_model.hpp): each preset's resolved scene goes JSON -> Scene -> JSON
+// The typed scene (workflow/spreading/scene_model.hpp): each preset's resolved scene goes JSON -> Scene -> JSON
 // unchanged (so cases/cNNN/scene.json and the case hashes stay what they were); a malformed
 // scene.json is refused with its file and key named; and the one function that sets design
 // variables sets a plugin parameter and a host key, and carries contact.X to the laws that inherit it.
@@ -10,9 +10,9 @@
 
 #include "core/error.hpp"
 #include "unit/built_plugins.hpp"
-#include "workflow/scene/scene_section.hpp"
-#include "workflow/scene/scene_key.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_section.hpp"
+#include "workflow/spreading/scene_key.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;

@@ -3,7 +3,7 @@
 // The rule is a closed interval test on the description's y_centre +- length/2 against [lo, hi].
 #include <gtest/gtest.h>
 
-#include "workflow/scene_file/spreader_span.hpp"
+#include "workflow/scene/spreader_span.hpp"
 
 namespace sm = spreadmap;
 

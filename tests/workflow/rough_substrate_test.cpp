@@ -9,8 +9,8 @@
 #include "engine/vtp_io.hpp"
 #include "workflow/process.hpp"
 #include "workflow/run_files.hpp"
-#include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/scene/layer_feed.hpp"
+#include "workflow/spreading/substrate_roughness.hpp"
+#include "workflow/spreading/layer_feed.hpp"
 
 namespace fs = std::filesystem;
 namespace sm = spreadmap;

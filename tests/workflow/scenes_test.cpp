@@ -52,7 +52,7 @@ class Scenes : public ::testing::Test {
  protected:
   void SetUp() override {
     dir_ = fs::temp_directory_path() /
-           ("spreadmap_scenes_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
+           ("spreadmap_powders_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" +
             std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);

@@ -9,7 +9,7 @@
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/stop.hpp"
-#include "workflow/scene_file/scene_run.hpp"
+#include "workflow/scene/scene_run.hpp"
 
 namespace spreadmap::calibrate {
 namespace {
@@ -60,10 +60,10 @@ BulkResult run_bulk_test(const BulkTest &test, const std::vector<ParameterRange>
       return r;
     }
   }
-  auto loaded = scene_file::load_scene(test.scene, registry);
+  auto loaded = scene::load_scene(test.scene, registry);
   for (std::size_t k = 0; k < names.size(); ++k) loaded.scene.pair_law[names[k].name] = values[k];
   const auto t0 = std::chrono::steady_clock::now();
-  auto run = scene_file::build_scene<double>(loaded, registry);
+  auto run = scene::build_scene<double>(loaded, registry);
   const auto keep_going = [](const engine::Simulation<double> &) { return !stop_requested(); };
   // A heap is measured once it has come to rest, at the end; a drum's surface keeps moving, so it is
   // measured at every output time of the run's second half and the fits are pooled.
@@ -76,7 +76,7 @@ BulkResult run_bulk_test(const BulkTest &test, const std::vector<ParameterRange>
   std::vector<AngleFit> fits;
   engine::ParticleSet state;
   for (double t : times) {
-    if (!scene_file::advance_scene(*run, t, keep_going))
+    if (!scene::advance_scene(*run, t, keep_going))
       throw Interrupted(fmt::format("interrupted in {} at {}; the finished runs are kept", test.name, params.dump()));
     state = run->sim->state();
     fits.push_back(test.measure == Measure::heap_angle ? heap_angle(state, test.plate_z) : bed_angle(state, 4));

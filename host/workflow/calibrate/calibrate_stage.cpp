@@ -17,7 +17,7 @@
 #include "workflow/calibrate/calibration_file.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 #include "workflow/stage/stage_settings.hpp"
 
 #include <spreadmap/params.hpp>

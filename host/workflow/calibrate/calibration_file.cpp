@@ -6,7 +6,7 @@
 #include "core/error.hpp"
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
-#include "workflow/scene_file/scene_build.hpp"
+#include "workflow/scene/scene_build.hpp"
 #include "workflow/file/workflow.hpp"
 
 namespace spreadmap::calibrate {
@@ -80,7 +80,7 @@ std::vector<SceneLaw> read_bulk_tests(YAML::Node root, YAML::Node tests, const s
       continue;
     }
     try {
-      const auto scene = scene_file::load_scene(t.scene, registry);
+      const auto scene = scene::load_scene(t.scene, registry);
       laws.push_back({&registry.get("contact", scene.scene.law), scene.scene.pair_law});
     } catch (const InputError &e) {
       diag.error(Location::of(file, tests[k]["scene"]), key + ".scene",

@@ -5,9 +5,9 @@
 #include <optional>
 
 #include "workflow/cases/case_record.hpp"
-#include "workflow/scene/coarse_grain.hpp"
+#include "workflow/spreading/coarse_grain.hpp"
 #include "workflow/cases/heap_cache.hpp"
-#include "workflow/scene/layer_feed.hpp"
+#include "workflow/spreading/layer_feed.hpp"
 #include "workflow/cases/layers.hpp"
 #include "workflow/cases/spread_pass.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/registry.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap {
 

@@ -8,7 +8,7 @@
 
 #include "core/files.hpp"
 #include "engine/vtp_io.hpp"
-#include "workflow/scene/case_setup.hpp"
+#include "workflow/spreading/case_setup.hpp"
 
 namespace spreadmap {
 namespace {

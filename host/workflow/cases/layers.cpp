@@ -7,9 +7,9 @@
 #include "core/files.hpp"
 #include "engine/vtp_io.hpp"
 #include "workflow/cases/case_record.hpp"
-#include "workflow/scene/case_setup.hpp"
+#include "workflow/spreading/case_setup.hpp"
 #include "workflow/cases/heap_cache.hpp"
-#include "workflow/scene/layer_feed.hpp"
+#include "workflow/spreading/layer_feed.hpp"
 #include "workflow/cases/spread_pass.hpp"
 
 namespace spreadmap {

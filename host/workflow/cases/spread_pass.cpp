@@ -10,7 +10,7 @@
 #include "engine/errors.hpp"
 #include "engine/simulation.hpp"
 #include "engine/vtp_io.hpp"
-#include "workflow/scene/case_setup.hpp"
+#include "workflow/spreading/case_setup.hpp"
 
 namespace spreadmap {
 namespace {
@@ -60,7 +60,7 @@ bool resume_if_checkpointed(engine::Simulation<Real> &sim, const PassCheckpoint 
 // its time and the spreader's pose then (for case.json, series.pvd and the frames).
 class PassSnapshots {
  public:
-  PassSnapshots(const fs::path &dir, const scene_file::BoundSpreader &spreader, double duration, int snapshots)
+  PassSnapshots(const fs::path &dir, const scene::BoundSpreader &spreader, double duration, int snapshots)
       : dir_(dir), spreader_(spreader), duration_(duration), snapshots_(snapshots) {}
 
   nlohmann::json pose_at(double t) const { return to_json(spreader_.pose(t)); }
@@ -101,7 +101,7 @@ class PassSnapshots {
   }
 
   fs::path dir_;
-  const scene_file::BoundSpreader &spreader_;
+  const scene::BoundSpreader &spreader_;
   double duration_;
   int snapshots_;
   int next_ = 1;

@@ -10,10 +10,10 @@
 #include "core/schema.hpp"
 #include "core/units.hpp"
 #include "workflow/figures/stage_figures.hpp"
-#include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/scene/case_setup.hpp"
+#include "workflow/spreading/substrate_roughness.hpp"
+#include "workflow/spreading/case_setup.hpp"
 #include "workflow/cases/case_runner.hpp"
-#include "workflow/scene/layer_feed.hpp"
+#include "workflow/spreading/layer_feed.hpp"
 
 namespace spreadmap {
 namespace {

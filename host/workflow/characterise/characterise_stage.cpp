@@ -21,13 +21,13 @@
 #include "core/files.hpp"
 #include "workflow/characterise/bed_thickness.hpp"
 #include "workflow/characterise/case_metrics.hpp"
-#include "workflow/scene/substrate_roughness.hpp"
+#include "workflow/spreading/substrate_roughness.hpp"
 #include "workflow/cases/case_runner.hpp"
-#include "workflow/scene/case_setup.hpp"
-#include "workflow/scene/layer_feed.hpp"
+#include "workflow/spreading/case_setup.hpp"
+#include "workflow/spreading/layer_feed.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap {
 namespace {

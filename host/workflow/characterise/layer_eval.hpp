@@ -14,7 +14,7 @@
 
 #include "core/registry.hpp"
 #include "engine/particle_set.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap {
 

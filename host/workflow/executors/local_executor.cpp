@@ -11,7 +11,7 @@
 #include "workflow/run/progress.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap {
 

@@ -12,7 +12,7 @@
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 #include "workflow/stage/stage_settings.hpp"
 #include "workflow/train/train_config.hpp"
 

@@ -6,9 +6,9 @@
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "core/stop.hpp"
-#include "workflow/scene/substrate_roughness.hpp"
-#include "workflow/scene/case_setup.hpp"
-#include "workflow/scene/coarse_grain.hpp"
+#include "workflow/spreading/substrate_roughness.hpp"
+#include "workflow/spreading/case_setup.hpp"
+#include "workflow/spreading/coarse_grain.hpp"
 #include "workflow/executors/local_executor.hpp"
 
 namespace spreadmap {

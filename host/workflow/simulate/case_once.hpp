@@ -7,7 +7,7 @@
 #include "workflow/cases/case_runner.hpp"
 #include "workflow/characterise/layer_eval.hpp"
 #include "workflow/stage/stage.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap {
 

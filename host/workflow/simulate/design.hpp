@@ -14,7 +14,7 @@
 
 #include "core/diagnostics.hpp"
 #include "core/registry.hpp"
-#include "workflow/scene/scene_section.hpp"
+#include "workflow/spreading/scene_section.hpp"
 
 namespace spreadmap {
 

@@ -9,7 +9,7 @@
 #include "core/schema.hpp"
 #include "cuda/backend.hpp"
 #include "workflow/simulate/adaptive_run.hpp"
-#include "workflow/scene/coarse_grain.hpp"
+#include "workflow/spreading/coarse_grain.hpp"
 #include "workflow/simulate/design.hpp"
 #include "workflow/cases/replicates.hpp"
 #include "workflow/executors/executor_hook.hpp"
@@ -17,7 +17,7 @@
 #include "workflow/figures/stage_figures.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 #include "workflow/stage/stage_settings.hpp"
 
 namespace spreadmap {

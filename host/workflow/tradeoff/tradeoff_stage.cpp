@@ -25,10 +25,10 @@
 #include "workflow/simulate/case_once.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/figures/stage_figures.hpp"
-#include "workflow/scene/scene_section.hpp"
+#include "workflow/spreading/scene_section.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 #include "workflow/stage/stage_settings.hpp"
 
 namespace spreadmap {

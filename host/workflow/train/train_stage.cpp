@@ -12,7 +12,7 @@
 #include "core/suggest.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 #include "workflow/train/train_config.hpp"
 #include "workflow/train/training.hpp"
 

@@ -10,7 +10,7 @@
 #include "workflow/executors/executor_hook.hpp"
 #include "workflow/executors/local_executor.hpp"
 #include "workflow/cases/case_runner.hpp"
-#include "workflow/scene/coarse_grain.hpp"
+#include "workflow/spreading/coarse_grain.hpp"
 #include "workflow/cases/replicates.hpp"
 
 namespace spreadmap {

@@ -11,7 +11,7 @@
 
 #include "workflow/characterise/case_metrics.hpp"
 #include "workflow/stage/stage.hpp"
-#include "workflow/scene/scene_model.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap {
 

@@ -1,0 +1,49 @@
+#include "workflow/spreading/spreader_check.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <exception>
+#include <mutex>
+#include <set>
+
+#include "workflow/spreading/case_setup.hpp"
+#include "workflow/scene/spreader_span.hpp"
+
+namespace spreadmap {
+
+namespace {
+// Whether this process has not said `text` yet: a run resolves its scene once per stage, and the
+// same warning each time would read as many problems.
+bool first_time(const std::string &text) {
+  static std::mutex guard;
+  static std::set<std::string> said;
+  const std::lock_guard<std::mutex> lock(guard);
+  return said.insert(text).second;
+}
+}  // namespace
+
+void check_spreader_span(const Scene &scene, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
+                         Diagnostics &diag) {
+  sm_spreader_description_v2 described{};
+  try {
+    described = describe_spreader(scene, registry, file);
+  } catch (const std::exception &) {
+    return;  // a spreader that cannot be bound is reported where it is bound
+  }
+  const auto shortfall = spreader_span_shortfall(described, make_domain(scene));
+  if (!shortfall) return;
+  if (!shortfall->periodic) {
+    const std::string text = fmt::format("{}: scene.spreader: {}\n  {}", file, shortfall->what, shortfall->fix);
+    if (first_time(text)) spdlog::warn("{}", text);
+    return;
+  }
+  const YAML::Node section = user["spreader"];
+  const YAML::Node at = section && section.IsMap() ? (section["y_centre"] ? section["y_centre"]
+                                                      : section["length"] ? section["length"]
+                                                                          : section)
+                                                   : user;
+  diag.error(Location::of(file, at), "scene.spreader.y_centre", shortfall->what, shortfall->fix);
+}
+
+}  // namespace spreadmap
