@@ -36,6 +36,7 @@
 #include <thread>
 #include <time.h>
 #include <csignal>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include <vector>
@@ -149,6 +150,7 @@ struct BusyProcess {
   BusyProcess() {
     pid = ::fork();
     if (pid == 0) {
+      ::prctl(PR_SET_PDEATHSIG, SIGKILL);  // never outlives a benchmark that was killed
       volatile unsigned long spin = 0;
       for (;;) spin = spin + 1;
     }

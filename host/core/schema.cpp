@@ -6,10 +6,9 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <stdexcept>
 
+#include "core/files.hpp"
 #include "core/suggest.hpp"
 #include "core/units.hpp"
 
@@ -57,10 +56,8 @@ void resolve_file_param(const std::string &key, nlohmann::json &out, const Locat
     out[key] = nullptr;
     return;
   }
-  std::ifstream in(resolved, std::ios::binary);
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
   out[key] = fs::absolute(resolved).lexically_normal().string();
-  out[key + "_digest"] = content_digest(bytes);
+  out[key + "_digest"] = content_digest(read_text(resolved));
 }
 
 }  // namespace

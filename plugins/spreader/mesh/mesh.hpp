@@ -38,8 +38,9 @@ struct Mesh {
 
   std::shared_ptr<const mesh::TriangleMesh> surface;
   Travel travel;
-  double axis[3];   // the reference point in the mesh's coordinates [m] (y: the middle of its extent)
-  double placed[3]; // where the reference point is at t = 0, x aside (start) [m]
+  double axis[3];      // the reference point in the mesh's coordinates [m] (y: the middle of its extent)
+  double y_centre;     // where the reference point is along y [m]
+  double axis_height;  // and along z [m] (along x: travel.x(t))
   double omega;     // [rad/s]
   double reach;     // largest distance of a vertex from the axis in the x-z plane [m]
 
@@ -49,8 +50,8 @@ struct Mesh {
     const double time = static_cast<double>(t), angle = omega * travel.elapsed(time);
     const double c = std::cos(angle), s = std::sin(angle);
     // into the part's frame: undo the translation, then the rotation by `angle` about +y
-    const double dx = static_cast<double>(p.x) - travel.x(time), dy = static_cast<double>(p.y) - placed[1],
-                 dz = static_cast<double>(p.z) - placed[2];
+    const double dx = static_cast<double>(p.x) - travel.x(time), dy = static_cast<double>(p.y) - y_centre,
+                 dz = static_cast<double>(p.z) - axis_height;
     const mesh::V3 q{c * dx - s * dz + axis[0], dy + axis[1], s * dx + c * dz + axis[2]};
     mesh::SurfacePoint near;
     if (!surface->contact(q, static_cast<double>(r), near)) return false;

@@ -178,16 +178,20 @@ TEST(MeshContact, ACentreDeepInsideAClosedPartIsFoundAndPushedOutThroughTheNeare
     const bool in = p.x > 0 && p.x < 2e-3 && p.y > 0 && p.y < 4e-3 && p.z > 0 && p.z < 1e-3;
     ASSERT_EQ(part.inside(p), in) << p.x << " " << p.y << " " << p.z;
   }
-  // a ray through the diagonals and corners of a plate folded into a closed box of 2 x 2 squares
-  const TriangleMesh plated = [] {
-    auto facets = sm::mesh::testing::plate(2, 1.0f, 1.0f);
-    auto bottom = sm::mesh::testing::box({0, 0, 0}, {2, 2, 1});
-    for (std::size_t k = 0; k < bottom.size(); ++k)
-      if (k != 2 && k != 3) facets.push_back(bottom[k]);  // the box without its top (facets 2 and 3)
-    return TriangleMesh(metres(facets));
-  }();
-  for (const V &p : {V{1e-3, 1e-3, 0.5e-3}, V{0.5e-3, 0.5e-3, 0.5e-3}, V{1e-3, 0.5e-3, 0.2e-3}})
-    EXPECT_TRUE(plated.inside(p)) << "under a shared corner, diagonal or edge: " << p.x << " " << p.y;
+  // rays through a shared diagonal (the box's top face), a corner of four faces and an edge between
+  // two faces (a pyramid's apex and side edge) are counted once
+  const TriangleMesh tip(metres(sm::mesh::testing::pyramid(1.0f, 2.0f)));
+  EXPECT_TRUE(part.inside({0.5e-3, 1.0e-3, 0.5e-3})) << "under the top face's diagonal";
+  EXPECT_TRUE(tip.inside({0, 0, 0.5e-3})) << "under the apex";
+  EXPECT_TRUE(tip.inside({0.3e-3, 0.3e-3, 0.2e-3})) << "under a side edge";
+  EXPECT_FALSE(tip.inside({0.9e-3, 0.9e-3, 1.5e-3})) << "beside the apex, outside";
+  // an open mesh (a plate) has no inside: a centre far under it touches nothing
+  const TriangleMesh plate(metres(sm::mesh::testing::plate(2, 1.0f, 1.0f)));
+  EXPECT_TRUE(part.closed());
+  EXPECT_FALSE(plate.closed());
+  EXPECT_FALSE(plate.inside({1e-3, 1e-3, 0.5e-3}));
+  EXPECT_FALSE(plate.contact({1e-3, 1e-3, 0.5e-3}, 0.1e-3, near));
+  EXPECT_FALSE(part.contact({std::nan(""), 1e-3, 0.5e-3}, 0.1e-3, near)) << "a NaN centre touches nothing";
 }
 
 TEST(MeshContact, ASphereFarFromAMeshCostsNoTriangleTestAndCostDoesNotGrowWithItsSize) {

@@ -124,4 +124,16 @@ TEST(MeshSpreader, AWrongUnitAMissingUnitOrAChangedFileIsRefused) {
             "");
   const std::string changed = refusal({{"file", f.file("blade.stl")}, {"unit", "mm"}, {"file_digest", "0"}});
   EXPECT_NE(changed.find("changed since its scene was validated"), std::string::npos) << changed;
+  sm::mesh::testing::write_binary(f.file("outline.stl"), {{0, 0, 0, 2, 0, 0, 2, 0, 10}, {0, 0, 0, 2, 0, 10, 0, 0, 10}});
+  const std::string flat = refusal({{"file", f.file("outline.stl")}, {"unit", "mm"}});
+  EXPECT_NE(flat.find("outline.stl: the part has no extent along y"), std::string::npos) << flat;
+  auto holed = sm::mesh::testing::box({0, -35, 0}, {2, 35, 10});
+  holed.pop_back();  // one triangle of a face missing
+  sm::mesh::testing::write_binary(f.file("holed.stl"), holed);
+  const std::string open = refusal({{"file", f.file("holed.stl")}, {"unit", "mm"}});
+  EXPECT_NE(open.find("holed.stl: the part is not closed: 3 edge(s) do not join exactly two triangles"),
+            std::string::npos)
+      << open;
+  const std::string gone = refusal({{"file", f.file("gone.stl")}, {"unit", "mm"}});
+  EXPECT_NE(gone.find("gone.stl: cannot be opened"), std::string::npos) << gone;
 }

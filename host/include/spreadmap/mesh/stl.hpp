@@ -17,7 +17,6 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -166,13 +165,18 @@ inline std::vector<Triangle> read_ascii(const std::string &text, double scale, c
 
 }  // namespace detail
 
-// The triangles of an STL file, in metres (`scale`: metres per file unit).
-inline std::vector<Triangle> read_stl(const std::string &file, double scale) {
+// A file's bytes, or a refusal naming it (missing or unreadable).
+inline std::string read_file_bytes(const std::string &file) {
   std::ifstream in(file, std::ios::binary);
   if (!in)
     throw detail::stl_error(file, "", "cannot be opened (missing or unreadable)",
                             "check the path: it is relative to the file that names it");
-  const std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// The triangles of an STL file's bytes, in metres (`scale`: metres per file unit); the caller read
+// them (read_file_bytes), e.g. to take their digest too.
+inline std::vector<Triangle> read_stl_bytes(const std::string &bytes, double scale, const std::string &file) {
   if (bytes.empty()) throw detail::stl_error(file, "", "the file is empty", "export the part again");
   std::uint32_t count = 0;
   if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, 4);
@@ -194,6 +198,11 @@ inline std::vector<Triangle> read_stl(const std::string &file, double scale) {
                             "export the part as STL");
   if (out.empty()) throw detail::stl_error(file, "", "the file holds no triangles", "export the part again");
   return out;
+}
+
+// The triangles of an STL file, in metres.
+inline std::vector<Triangle> read_stl(const std::string &file, double scale) {
+  return read_stl_bytes(read_file_bytes(file), scale, file);
 }
 
 }  // namespace spreadmap::mesh

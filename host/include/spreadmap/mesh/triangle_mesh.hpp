@@ -9,7 +9,8 @@
 // sum at a corner; for a closed mesh this is the exact sign, and an open mesh (a plate) is a
 // one-sided wall whose faces point to the particles. A centre deeper inside a closed part than its
 // own radius (a sphere placed inside it) is found by casting a ray (inside()) and pushed out
-// through the nearest surface.
+// through the nearest surface; an open mesh has no inside (closed(): every edge shared by exactly
+// two triangles; a T-junction counts as open).
 //
 // Triangles are binned in a uniform grid over the mesh's box: a query visits only the cells its
 // sphere overlaps, so a sphere far from the mesh costs one box test whatever the mesh's size.
@@ -41,7 +42,7 @@ class TriangleMesh {
     weld(triangles);
     pseudo_normals();
     bin();
-    flag_empty_cells();
+    if (closed()) flag_empty_cells();
   }
 
   // The nearest surface point to `p` when one lies within `reach`; `examined` counts the triangle
@@ -50,7 +51,7 @@ class TriangleMesh {
     std::int64_t from[3], to[3];
     const double q[3] = {p.x, p.y, p.z};
     for (int d = 0; d < 3; ++d) {
-      if (q[d] + reach < lo_[d] || q[d] - reach > hi_[d]) return false;
+      if (!(q[d] + reach >= lo_[d] && q[d] - reach <= hi_[d])) return false;  // (NaN: outside)
       from[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q[d] - reach - lo_[d]) / cell_)), 0,
                                          dims_[d] - 1);
       to[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((q[d] + reach - lo_[d]) / cell_)), 0,
@@ -87,11 +88,9 @@ class TriangleMesh {
   bool contact(const V3 &p, double reach, SurfacePoint &out, std::size_t *examined = nullptr) const {
     if (nearest(p, reach, out, examined)) return true;
     if (!inside(p)) return false;
-    double extent = 0;
-    for (int d = 0; d < 3; ++d) extent = std::max(extent, hi_[d] - lo_[d]);
-    for (double r = std::max(2 * reach, cell_); r < 4 * extent; r *= 2)
+    for (double r = std::max(2 * reach, cell_); r < 4 * extent(); r *= 2)
       if (nearest(p, r, out, examined)) return true;
-    return nearest(p, 4 * extent, out, examined);
+    return nearest(p, 4 * extent(), out, examined);
   }
 
   // Whether `p` lies inside the closed part: the parity of the surface crossings of the ray from p
@@ -99,10 +98,11 @@ class TriangleMesh {
   // another cell the ray is cast, each crossing counted in the cell that holds it, and a ray through
   // an edge or corner shared by two triangles is counted once (the top-left rule of rasterisers).
   bool inside(const V3 &p) const {
+    if (!closed()) return false;
     const double q[3] = {p.x, p.y, p.z};
     std::int64_t c[3];
     for (int d = 0; d < 3; ++d) {
-      if (q[d] < lo_[d] || q[d] > hi_[d]) return false;
+      if (!(q[d] >= lo_[d] && q[d] <= hi_[d])) return false;
       c[d] = std::min<std::int64_t>(static_cast<std::int64_t>((q[d] - lo_[d]) / cell_), dims_[d] - 1);
     }
     const std::size_t cell = static_cast<std::size_t>((c[0] * dims_[1] + c[1]) * dims_[2] + c[2]);
@@ -122,8 +122,14 @@ class TriangleMesh {
 
   const std::array<double, 3> &lo() const { return lo_; }
   const std::array<double, 3> &hi() const { return hi_; }
+  // The largest side of the mesh's box [m].
+  double extent() const { return std::max({hi_[0] - lo_[0], hi_[1] - lo_[1], hi_[2] - lo_[2]}); }
   const std::vector<V3> &vertices() const { return vertex_; }
   std::size_t triangles() const { return corner_.size(); }
+  bool closed() const { return open_edges_ == 0; }
+  // Edges that do not belong to exactly two triangles (a hole's rim, a T-junction), and one of them.
+  std::size_t open_edges() const { return open_edges_; }
+  const V3 &open_edge_at() const { return open_edge_at_; }
 
  private:
   SurfacePoint signed_point(const V3 &p, std::uint32_t t, const ClosestPoint &cp) const {
@@ -170,15 +176,19 @@ class TriangleMesh {
 
   void pseudo_normals() {
     std::map<std::pair<std::uint32_t, std::uint32_t>, V3> edge_sum;
+    std::map<std::pair<std::uint32_t, std::uint32_t>, int> edge_faces;
     vertex_normal_.assign(vertex_.size(), V3{0, 0, 0});
     for (std::size_t t = 0; t < corner_.size(); ++t)
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t a = corner_[t][k], b = corner_[t][(k + 1) % 3], c = corner_[t][(k + 2) % 3];
         edge_sum[std::minmax(a, b)] += face_normal_[t];
+        ++edge_faces[std::minmax(a, b)];
         const V3 u = vertex_[b] - vertex_[a], w = vertex_[c] - vertex_[a];
         const double angle = std::acos(std::clamp(dot(u, w) / (norm(u) * norm(w)), -1.0, 1.0));
         vertex_normal_[a] += face_normal_[t] * angle;
       }
+    for (const auto &[edge, faces] : edge_faces)
+      if (faces != 2 && open_edges_++ == 0) open_edge_at_ = vertex_[edge.first];
     edge_normal_.resize(corner_.size());
     for (std::size_t t = 0; t < corner_.size(); ++t)
       for (int k = 0; k < 3; ++k) edge_normal_[t][k] = edge_sum[std::minmax(corner_[t][k], corner_[t][(k + 1) % 3])];
@@ -193,29 +203,22 @@ class TriangleMesh {
       const double c[3] = {v.x, v.y, v.z};
       for (int d = 0; d < 3; ++d) lo_[d] = std::min(lo_[d], c[d]), hi_[d] = std::max(hi_[d], c[d]);
     }
-    double extent = 0;
-    for (int d = 0; d < 3; ++d) extent = std::max(extent, hi_[d] - lo_[d]);
-    auto box_of = [&](std::size_t t, std::array<double, 3> &a, std::array<double, 3> &b) {
+    // A triangle's middle box extent is its width: a long strip (a cylinder's facet) crosses many cells
+    // along its length but stays one cell wide.
+    box_.resize(corner_.size());
+    std::vector<double> width(corner_.size());
+    for (std::size_t t = 0; t < corner_.size(); ++t) {
       for (int d = 0; d < 3; ++d) {
         const double c0 = coord(corner_[t][0], d), c1 = coord(corner_[t][1], d), c2 = coord(corner_[t][2], d);
-        a[d] = std::min({c0, c1, c2}), b[d] = std::max({c0, c1, c2});
+        box_[t][d] = std::min({c0, c1, c2}), box_[t][d + 3] = std::max({c0, c1, c2});
       }
-    };
-    // A triangle's middle box extent is its width: a long strip (a roller's facet) crosses many cells
-    // along its length but stays one cell wide.
-    std::vector<double> width(corner_.size());
-    box_.resize(corner_.size());
-    for (std::size_t t = 0; t < corner_.size(); ++t) {
-      std::array<double, 3> a, b;
-      box_of(t, a, b);
-      box_[t] = {a[0], a[1], a[2], b[0], b[1], b[2]};
-      std::array<double, 3> e{b[0] - a[0], b[1] - a[1], b[2] - a[2]};
+      std::array<double, 3> e{box_[t][3] - box_[t][0], box_[t][4] - box_[t][1], box_[t][5] - box_[t][2]};
       std::sort(e.begin(), e.end());
       width[t] = e[1];
     }
     std::nth_element(width.begin(), width.begin() + static_cast<std::ptrdiff_t>(width.size() / 2), width.end());
     const double typical = width[width.size() / 2];
-    cell_ = std::max(typical, extent / 1024);
+    cell_ = std::max(typical, extent() / 1024);
     for (;;) {
       std::size_t cells = 1;
       for (int d = 0; d < 3; ++d) {
@@ -225,17 +228,15 @@ class TriangleMesh {
       if (cells <= (std::size_t(1) << 20)) break;
       cell_ *= 1.25;
     }
-    const double pad = 1e-9 * extent;
+    const double pad = 1e-9 * extent();
     std::vector<std::vector<std::uint32_t>> lists(static_cast<std::size_t>(dims_[0] * dims_[1] * dims_[2]));
     for (std::size_t t = 0; t < corner_.size(); ++t) {
-      std::array<double, 3> a, b;
-      box_of(t, a, b);
       std::int64_t from[3], to[3];
       for (int d = 0; d < 3; ++d) {
-        from[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((a[d] - pad - lo_[d]) / cell_)), 0,
-                                           dims_[d] - 1);
-        to[d] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((b[d] + pad - lo_[d]) / cell_)), 0,
-                                         dims_[d] - 1);
+        from[d] = std::clamp<std::int64_t>(
+            static_cast<std::int64_t>(std::floor((box_[t][d] - pad - lo_[d]) / cell_)), 0, dims_[d] - 1);
+        to[d] = std::clamp<std::int64_t>(
+            static_cast<std::int64_t>(std::floor((box_[t][d + 3] + pad - lo_[d]) / cell_)), 0, dims_[d] - 1);
       }
       for (std::int64_t i = from[0]; i <= to[0]; ++i)
         for (std::int64_t j = from[1]; j <= to[1]; ++j)
@@ -310,6 +311,8 @@ class TriangleMesh {
   std::int64_t dims_[3] = {1, 1, 1};
   std::vector<std::uint32_t> cell_start_, cell_items_;
   std::vector<unsigned char> empty_inside_;  // per cell: 1 when it holds no triangle and lies inside
+  std::size_t open_edges_ = 0;  // edges not shared by exactly two triangles
+  V3 open_edge_at_{0, 0, 0};     // a corner of the first of them
 };
 
 }  // namespace spreadmap::mesh
