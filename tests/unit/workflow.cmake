@@ -12,3 +12,5 @@ add_dependencies(test_unit_powder plugin_contact_hooke_slider plugin_contact_her
 spreadmap_test(unit roughness SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_roughness_test.cpp
                ${CMAKE_CURRENT_LIST_DIR}/workflow_height_map_test.cpp LIBS spreadmap_workflow)
 add_dependencies(test_unit_roughness plugin_contact_hooke_slider plugin_spreader_roller)
+# A scene file's block wall: the closed-form contact with its faces, edges and corners, and its motion.
+spreadmap_test(unit block_wall SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_block_wall_test.cpp LIBS spreadmap_workflow)

@@ -291,7 +291,7 @@ TEST_F(BadScenes, AreRefusedBeforeAnythingRunsWithTheFileLineOrKey) {
                             {head + "0,0,0.002,-0.001,2500\n", ":2:", "a radius must be > 0"},
                             {head + "0,0,0.002,0.001,-2500\n", ":2:", "a density must be > 0"},
                             {head + good + "0.0015,0,0.002,0.001,2500\n", ":2: particle 0", "overlaps particle 1"},
-                            {head + good + "0.003,0,-0.0005,0.001,2500\n", ":3: particle 1", "outside wall"},
+                            {head + good + "0.003,0,-0.0005,0.001,2500\n", ":3: particle 1", "wrong side of wall"},
                             {head + good + "0.05,0,0.002,0.001,2500\n", ":3: particle 1", "outside the domain"}}) {
     BadScene s;
     s.csv = f.csv;
@@ -317,6 +317,18 @@ TEST_F(BadScenes, AreRefusedBeforeAnythingRunsWithTheFileLineOrKey) {
   refused(s, "walls[0].spreader.gap", "outside [0, 0.1] m");
   s.walls = "walls:\n  - {type: spreader, normal: [0, 0, 1], spreader: {use: blade}}\n";
   refused(s, "walls[0].normal", "not a key of a spreader wall");
+  // blocks: two corners with room between them, a motion that stops after it starts, no keys of other walls
+  s.walls = "walls:\n  - {type: block, lo: [0, 0, -1 mm], hi: [1 mm, 1 mm, -1 mm]}\n";
+  refused(s, "walls[0].hi", "hi.z is not above lo.z: the block is empty");
+  s.walls = "walls:\n  - {type: block, lo: [-5 mm, -5 mm, -1 mm], hi: [5 mm, 5 mm, 0], velocity: [0, 0, 1 mm/s], "
+            "start: 2 ms, stop: 1 ms}\n";
+  refused(s, "walls[0].stop", "stop (0.001 s) is not after start (0.002 s)");
+  s.walls = "walls:\n  - {type: block, lo: [-5 mm, -5 mm, -1 mm], hi: [5 mm, 5 mm, 0], open_top: true}\n";
+  refused(s, "walls[0].open_top", "not a key of a block wall");
+  s.walls = "walls:\n  - {type: block, lo: [-5 mm, -5 mm, -1 mm], hi: [5 mm, 5 mm, 2.5 mm]}\n";
+  refused(s, ":2: particle 0", "wrong side of wall 'walls[0] (block)'");
+  s.walls = "walls:\n  - {type: spreader, spreader: {use: roller}, stop: 1 s}\n";
+  refused(s, "walls[0].stop", "not a key of a spreader wall");
   // a roller 10 mm long across a periodic 20 mm: the seam beside its end face would put spheres inside it
   s.domain = "domain: {lo: [-10 mm, -10 mm, -1 mm], hi: [10 mm, 10 mm, 20 mm], periodic: [y]}\n";
   s.walls = "walls:\n  - {type: spreader, spreader: {use: roller, length: 10 mm}}\n";
@@ -395,6 +407,53 @@ TEST_F(WrittenScenes, ASphereInsideATubeReboundsWithTheRestitutionAndATurningTub
       EXPECT_GT(row.at("vy"), 1e-3) << "not dragged by the turning tube";
     }
   }
+}
+
+TEST_F(WrittenScenes, BlocksMakeAStepThatReboundsWithTheRestitutionAndAPistonThatLiftsByItsTravel) {
+  // Sphere 0 slides (no friction) along a block floor into a block standing on it (a step, a concave
+  // corner): it keeps resting on the floor and comes back with e times its speed. Sphere 1 rests on a
+  // piston block that rises at 10 mm/s from 10 ms to 20 ms: it ends 100 um higher.
+  const double e = 0.7;
+  const std::size_t n = simulate_written(
+      "name: blocks\ndomain: {lo: [-20 mm, -10 mm, -10 mm], hi: [20 mm, 10 mm, 10 mm]}\n"
+      "contact: {use: hooke_slider, v_max: 1 m/s, overlap_max: 10 um, restitution: 0.7, friction: 0}\n"
+      "particles: {file: p.csv, density: 2500 kg/m^3}\n"
+      "walls:\n"
+      "  - {type: block, name: floor, lo: [-15 mm, -5 mm, -2 mm], hi: [0 mm, 5 mm, 0 mm]}\n"
+      "  - {type: block, name: step, lo: [-5 mm, -5 mm, 0 mm], hi: [0 mm, 5 mm, 3 mm]}\n"
+      "  - {type: block, name: piston, lo: [5 mm, -5 mm, -2 mm], hi: [15 mm, 5 mm, 0 mm],\n"
+      "     velocity: [0, 0, 10 mm/s], start: 10 ms, stop: 20 ms}\n"
+      "run: {duration: 40 ms, dt: 0.1 us, output_every: 10 ms}\n",
+      "x,y,z,vx,radius,id\n-10e-3,0,1e-3,0.2,1e-3,0\n10e-3,0,1e-3,0,1e-3,1\n");
+  ASSERT_EQ(n, 5u);
+  const auto last = particles(n - 1);
+  for (const auto &row : last) {
+    if (row.at("id") == 0) {
+      std::printf("step rebound %.9g m/s, closed form %.9g m/s; height %.6g mm\n", row.at("vx"), -e * 0.2,
+                  row.at("z") * 1e3);
+      EXPECT_NEAR(row.at("vx"), -e * 0.2, 1e-3 * e * 0.2);
+      EXPECT_NEAR(row.at("z"), 1e-3, 1e-6) << "it left the floor";
+    } else {
+      std::printf("lifted by the piston: %.6g um (its travel 100 um)\n", (row.at("z") - 1e-3) * 1e6);
+      EXPECT_NEAR(row.at("z") - 1e-3, 100e-6, 1e-6);
+    }
+  }
+}
+
+TEST_F(WrittenScenes, APlaneThatStopsHasCarriedItsSphereByItsTravel) {
+  // A floor plane rising at 10 mm/s from 0 to 10 ms (started at once, stopped on the way) lifts the
+  // sphere resting on it by 100 um, and then rests.
+  const std::size_t n = simulate_written(
+      "name: lift\ndomain: {lo: [-5 mm, -5 mm, -1 mm], hi: [5 mm, 5 mm, 5 mm]}\n"
+      "contact: {use: hooke_slider, v_max: 1 m/s, overlap_max: 10 um, restitution: 0.7}\n"
+      "particles: {file: p.csv, density: 2500 kg/m^3}\n"
+      "walls:\n  - {type: plane, point: [0, 0, 0], normal: [0, 0, 1], velocity: [0, 0, 10 mm/s], stop: 10 ms}\n"
+      "run: {duration: 30 ms, dt: 0.1 us, output_every: 10 ms}\n",
+      "x,y,z,radius,id\n0,0,1e-3,1e-3,0\n");
+  ASSERT_EQ(n, 4u);
+  const double rise = particles(n - 1).front().at("z") - 1e-3;
+  std::printf("lifted by the plane: %.6g um (its travel 100 um)\n", rise * 1e6);
+  EXPECT_NEAR(rise, 100e-6, 1e-6);
 }
 
 // A spreader short of open sides is a warning, not a refusal; a process says it once per file however

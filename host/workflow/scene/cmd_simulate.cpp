@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 
 #include "core/error.hpp"
 #include "core/files.hpp"
@@ -31,6 +32,7 @@ nlohmann::json resolved(const scene::SceneFile &s, std::size_t particles) {
   nlohmann::json walls = nlohmann::json::array();
   for (const auto &w : s.walls) {
     nlohmann::json j = {{"name", w.name}, {"law", w.law}, {"velocity", vec(w.velocity)}, {"start", w.start}};
+    if (std::isfinite(w.stop)) j["stop"] = w.stop;
     if (w.kind == WallKind::plane) {
       j["type"] = "plane";
       j["point"] = vec(w.point);
@@ -40,6 +42,13 @@ nlohmann::json resolved(const scene::SceneFile &s, std::size_t particles) {
       j["lo"] = vec(w.lo);
       j["hi"] = vec(w.hi);
       j["open_top"] = w.open_top;
+    } else if (w.kind == WallKind::block) {
+      j["type"] = "block";
+      j["lo"] = vec(w.lo);
+      j["hi"] = vec(w.hi);
+    } else if (w.kind == WallKind::spreader) {
+      j["type"] = "spreader";
+      j["spreader"] = {{"use", w.spreader.use}, {"params", w.spreader.params}};
     } else {
       const auto &c = w.cylinder;
       j["type"] = "cylinder";

@@ -4,11 +4,10 @@
 // The cylinder has a unit axis a, a base centre c (the middle of its bottom end), a height H and a
 // radius R. `inside`: particles live inside a tube open at both ends (a drum, a lifted cylinder);
 // a sphere touches the lateral surface only while its centre lies inside, between the two ends
-// (particles outside the tube do not feel it). Otherwise
-// particles live outside a solid cylinder (a pillar), end faces and rims included. The body
-// translates with `velocity` from time `start` on (at rest before) and turns about its own axis at
-// `omega` [rad/s] (right-hand rule about a): surface velocity v + omega a x (X - c) at a surface
-// point X. Overlap = sphere radius - distance of its centre to the surface; the normal points from
+// (particles outside the tube do not feel it). Otherwise particles live outside a solid cylinder (a
+// pillar), end faces and rims included. The body translates with `velocity` from time `start` to
+// `stop` (at rest before and after) and turns about its own axis at `omega` [rad/s] (right-hand rule
+// about a): surface velocity v + omega a x (X - c) at a surface point X. Overlap = sphere radius - distance of its centre to the surface; the normal points from
 // the surface into the sphere. SI units.
 #pragma once
 #include <spreadmap/geometry.hpp>
@@ -23,12 +22,13 @@ struct CylinderWall {
   double height;       // H [m]
   double radius;       // R [m]
   double velocity[3];  // [m/s]
-  double start;        // motion starts [s]
+  double start;        // the translation starts [s]
+  double stop;         // and stops [s]
   double omega;        // about a [rad/s]
   bool inside;
 
   template <class Real> SM_HD Vec3<Real> centre_at(Real t) const {
-    const Real moving = t > Real(start) ? t - Real(start) : Real(0);
+    const Real moving = t < Real(start) ? Real(0) : t > Real(stop) ? Real(stop - start) : t - Real(start);
     return {Real(base[0]) + Real(velocity[0]) * moving, Real(base[1]) + Real(velocity[1]) * moving,
             Real(base[2]) + Real(velocity[2]) * moving};
   }
@@ -76,7 +76,7 @@ struct CylinderWall {
     const Real overlap = r - dist;
     if (!(overlap > Real(0))) return false;
     const Vec3<Real> arm = p - n * dist - c;  // from the base centre to the contact point
-    const Real moving = t > Real(start) ? Real(1) : Real(0);
+    const Real moving = t > Real(start) && t < Real(stop) ? Real(1) : Real(0);
     const Vec3<Real> spin = cross(a * Real(omega), arm);
     hit.overlap = overlap;
     hit.normal = n;

@@ -9,6 +9,8 @@
 #include <spdlog/spdlog.h>
 #include <spreadmap/contact.hpp>
 
+#include <cmath>
+
 #include "core/error.hpp"
 #include "workflow/scene/scene_parse.hpp"
 #include "workflow/scene/scene_walls.hpp"
@@ -43,8 +45,8 @@ void attach_backend(engine::Simulation<Real> &sim, const SceneFile &s, const Sce
 #ifdef SPREADMAP_WITH_CUDA
   std::string message;  // said once per run by the caller
   if (s.backend == "cpu" || cuda::choose_backend(s.backend, message) != cuda::Backend::cuda) return;
-  if (!run.cylinders.empty()) {
-    spdlog::warn("{}: cylinder walls step on the CPU only; the scene runs on the CPU", s.file.string());
+  if (!run.cylinders.empty() || !run.blocks.empty()) {
+    spdlog::warn("{}: cylinder and block walls step on the CPU only; the scene runs on the CPU", s.file.string());
     return;
   }
   for (const auto &spreader : run.spreaders)
@@ -117,6 +119,11 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
       sim.add_geometry({&cylinder_wall_ops(), &geometry, bound(wall_law), w.name, 0.0});
       continue;
     }
+    if (w.kind == WallKind::block) {
+      const BlockWall &geometry = run->blocks.emplace_back(w.block);
+      sim.add_geometry({&block_wall_ops(), &geometry, bound(wall_law), w.name, 0.0});
+      continue;
+    }
     if (w.kind == WallKind::spreader) {
       const PluginInstance &plugin = run->spreader_plugins.emplace_back(registry.get("spreader", w.spreader.use),
                                                                         w.spreader.params.dump(), at + w.key_path);
@@ -134,7 +141,9 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
       const std::size_t index =
           sim.add_plane_wall({p.point, p.normal, moves_now ? w.velocity : Vec{0, 0, 0}, bound(wall_law), true, p.name});
       plane_laws.push_back(&wall_law);
-      if (!moves_now && w.velocity != Vec{0, 0, 0}) run->delayed.push_back({index, w.velocity, w.start});
+      if (w.velocity == Vec{0, 0, 0}) continue;
+      if (!moves_now) run->delayed.push_back({index, w.velocity, w.start});
+      if (std::isfinite(w.stop)) run->delayed.push_back({index, Vec{0, 0, 0}, w.stop});
     }
   }
   attach_backend(sim, s, *run, plane_laws, spreader_laws);

@@ -1,7 +1,7 @@
 // From a scene (a scene file, or a workflow's spreading case: workflow/spreading/case_setup.hpp) to
 // a running engine::Simulation: the contact plugin bound once per law (particle-particle, then one
 // per wall), the spreader plugins bound, the particles and the walls added, the step backend
-// chosen. The Simulation points into the bound plugins and the cylinder geometries, which live
+// chosen. The Simulation points into the bound plugins and the cylinder and block geometries, which live
 // beside it.
 #pragma once
 #include <deque>
@@ -25,11 +25,11 @@ struct LoadedScene {
 // together, then the particles' problems) before anything runs. `validate` uses it as it is.
 LoadedScene load_scene(const fs::path &file, PluginRegistry &registry);
 
-// A plane wall whose motion starts later than time 0: its velocity is set at `start`.
+// A plane wall's velocity set at a later time: a motion that starts after time 0, or stops.
 struct DelayedMotion {
   std::size_t plane;  // index in the Simulation
   Vec velocity;
-  double start;
+  double time;
 };
 
 // A bound spreader plugin: what it says of itself and where it is at a time.
@@ -46,6 +46,7 @@ template <class Real> struct SceneRun {
   std::deque<PluginInstance> wall_laws;  // one per wall, in the file's order (stable addresses)
   std::deque<PluginInstance> spreader_plugins;
   std::deque<CylinderWall> cylinders;    // the geometries' `self`
+  std::deque<BlockWall> blocks;          // the geometries' `self`
   std::vector<BoundSpreader> spreaders;  // the spreader walls, in the file's order
   std::unique_ptr<engine::Simulation<Real>> sim;
   std::vector<DelayedMotion> delayed;

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/error.hpp"
 #include "core/schema.hpp"
@@ -24,7 +25,7 @@ constexpr sm_param_v1 top_params[] = {
     sm::table("gravity", "gravitational acceleration [m/s^2]: a vector [gx, gy, gz] or off"),
     sm::table("contact", "the contact plugin (use: NAME) and its parameters, for particle-particle contacts"),
     sm::table("particles", "where the particles come from: file (CSV) or generate"),
-    sm::table("walls", "a list of walls: type plane, box, cylinder or spreader"),
+    sm::table("walls", "a list of walls: type plane, box, cylinder, block or spreader"),
     sm::table("run", "duration, time step, outputs"),
 };
 
@@ -54,13 +55,14 @@ constexpr sm_param_v1 generate_params[] = {
 };
 
 constexpr sm_param_v1 wall_params[] = {
-    sm::enumeration("type", "plane|box|cylinder|spreader", "plane",
-                    "plane (infinite), box (six inward planes), cylinder, or spreader (a spreader plugin)"),
+    sm::enumeration("type", "plane|box|cylinder|block|spreader", "plane",
+                    "plane (infinite), box (six inward planes), cylinder, block (a solid box the particles stay "
+                    "outside of), or spreader (a spreader plugin)"),
     sm::text("name", "", "name in messages and the log"),
     sm::table("point", "plane: a point of the plane [m]"),
     sm::table("normal", "plane: normal pointing to the particles' side (any length > 0)"),
-    sm::table("lo", "box: lower corner [m]"),
-    sm::table("hi", "box: upper corner [m]"),
+    sm::table("lo", "box, block: lower corner [m]"),
+    sm::table("hi", "box, block: upper corner [m]"),
     sm::boolean("open_top", false, "box: leave out the lid (the plane z = hi.z)"),
     sm::table("base", "cylinder: centre of its bottom end [m]"),
     sm::table("axis", "cylinder: axis direction (any length > 0), bottom to top; default [0, 0, 1]"),
@@ -71,6 +73,8 @@ constexpr sm_param_v1 wall_params[] = {
     sm::table("velocity", "translation velocity [m/s] (default 0)"),
     sm::number("start", "s", 0, 1e6, 0,
                "the translation (a spreader: its travel) starts at this time (at rest before)"),
+    sm::number("stop", "s", 0, 1e6, 0,
+               "the translation stops at this time (at rest after); default: it never stops. Not for a spreader"),
     sm::table("spreader", "spreader: the plugin (use: NAME) and its parameters as `spreadmap plugins NAME` lists them"),
 };
 
@@ -309,7 +313,7 @@ void read_spreader(const ParseContext &r, const YAML::Node &wall, const std::str
 }
 
 std::string wall_label(const WallSpec &w, std::size_t k) {
-  static const char *kinds[] = {"plane", "box", "cylinder", "spreader"};
+  static const char *kinds[] = {"plane", "box", "cylinder", "block", "spreader"};
   return w.name.empty() ? fmt::format("walls[{}] ({})", k, kinds[int(w.kind)]) : w.name;
 }
 
@@ -333,13 +337,13 @@ struct WallKeys {
         r.diag.error(
             r.at(w[key]), path + "." + key, fmt::format("not a key of a {} wall", type),
             "plane: point, normal; box: lo, hi, open_top; cylinder: base, axis, radius, height, inside, omega; "
-            "spreader: spreader (its motion is the plugin's)");
+            "block: lo, hi; spreader: spreader (its motion is the plugin's)");
   }
 };
 
 void read_spreader_wall(const WallKeys &keys, PluginRegistry &registry, const engine::Domain &domain, WallSpec &spec) {
-  keys.refuse_foreign(
-      {"point", "normal", "lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega", "velocity"});
+  keys.refuse_foreign({"point", "normal", "lo", "hi", "open_top", "base", "axis", "radius", "height", "inside", "omega",
+                       "velocity", "stop"});
   read_spreader(keys.r, keys.w, keys.path, registry, domain, spec.spreader);
   spec.spreader.time_offset = -spec.start;  // the plugin's time 0 (its start) at `start`, at rest before
 }
@@ -354,11 +358,16 @@ void read_plane_wall(const WallKeys &keys, WallSpec &spec) {
     if (auto n = r.direction(w["normal"], keys.path + ".normal", "normal into the particles' side")) spec.normal = *n;
 }
 
+// A box (particles inside) or a block (particles outside): two corners.
 void read_box_wall(const WallKeys &keys, WallSpec &spec) {
   const ParseContext &r = keys.r;
   const YAML::Node &w = keys.w;
   const std::string &path = keys.path;
-  keys.refuse_foreign({"point", "normal", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
+  if (spec.kind == WallKind::block)
+    keys.refuse_foreign({"point", "normal", "open_top", "base", "axis", "radius", "height", "inside", "omega",
+                         "spreader"});
+  else
+    keys.refuse_foreign({"point", "normal", "base", "axis", "radius", "height", "inside", "omega", "spreader"});
   std::optional<Vec> lo, hi;
   if (keys.need("lo", "add lo: [x, y, z] (m)")) lo = r.vector(w["lo"], path + ".lo", "m", "lower corner");
   if (keys.need("hi", "add hi: [x, y, z] (m)")) hi = r.vector(w["hi"], path + ".hi", "m", "upper corner");
@@ -368,9 +377,18 @@ void read_box_wall(const WallKeys &keys, WallSpec &spec) {
     for (int a = 0; a < 3; ++a)
       if (!((*hi)[a] > (*lo)[a]))
         r.diag.error(r.at(w["hi"]), path + ".hi",
-                     fmt::format("hi.{} is not above lo.{}: the box is empty", "xyz"[a], "xyz"[a]),
+                     fmt::format("hi.{} is not above lo.{}: the {} is empty", "xyz"[a], "xyz"[a], keys.type),
                      "make hi greater than lo along every axis");
   }
+  if (spec.kind != WallKind::block) return;
+  BlockWall &b = spec.block;
+  for (int a = 0; a < 3; ++a) {
+    b.lo[a] = spec.lo[a];
+    b.hi[a] = spec.hi[a];
+    b.velocity[a] = spec.velocity[a];
+  }
+  b.start = spec.start;
+  b.stop = spec.stop;
 }
 
 // `v`: the wall's host keys as validated (radius, height, inside and omega with their defaults).
@@ -380,7 +398,7 @@ void read_cylinder_wall(const WallKeys &keys, const nlohmann::json &v, WallSpec 
   const std::string &path = keys.path;
   keys.refuse_foreign({"point", "normal", "lo", "hi", "open_top", "spreader"});
   CylinderWall &c = spec.cylinder;
-  c = CylinderWall{{0, 0, 0}, {0, 0, 1}, 0, 0, {0, 0, 0}, 0, 0, true};
+  c = CylinderWall{{0, 0, 0}, {0, 0, 1}, 0, 0, {0, 0, 0}, 0, 0, 0, true};
   if (keys.need("base", "add base: [x, y, z] (m), the centre of its bottom end"))
     if (auto b = r.vector(w["base"], path + ".base", "m", "centre of the bottom end"))
       std::copy(b->begin(), b->end(), c.base);
@@ -397,6 +415,7 @@ void read_cylinder_wall(const WallKeys &keys, const nlohmann::json &v, WallSpec 
   c.inside = v.contains("inside") && v["inside"].is_boolean() ? v["inside"].get<bool>() : true;
   c.omega = v.contains("omega") && v["omega"].is_number() ? v["omega"].get<double>() : 0.0;
   c.start = spec.start;
+  c.stop = spec.stop;
   std::copy(spec.velocity.begin(), spec.velocity.end(), c.velocity);
 }
 
@@ -424,7 +443,7 @@ std::optional<WallSpec> read_wall(const ParseContext &r, const YAML::Node &w, st
   spec.key_path = path;
   spec.where = r.at(w);
   if (!w.IsMap()) {
-    r.diag.error(r.at(w), path, "expected a mapping with type: plane, box or cylinder");
+    r.diag.error(r.at(w), path, "expected a mapping with type: plane, box, cylinder, block or spreader");
     return std::nullopt;
   }
   // host keys here; the contact law's keys override the particle-particle law's values for this wall
@@ -433,11 +452,20 @@ std::optional<WallSpec> read_wall(const ParseContext &r, const YAML::Node &w, st
   const std::string type = v["type"];
   spec.kind = type == "box"        ? WallKind::box
               : type == "cylinder" ? WallKind::cylinder
+              : type == "block"    ? WallKind::block
               : type == "spreader" ? WallKind::spreader
                                    : WallKind::plane;
   if (v.contains("name") && v["name"].is_string()) spec.name = v["name"];
   if (v.contains("open_top") && v["open_top"].is_boolean()) spec.open_top = v["open_top"];
   if (v.contains("start") && v["start"].is_number()) spec.start = v["start"];
+  spec.stop = std::numeric_limits<double>::infinity();
+  if (w["stop"] && v.contains("stop") && v["stop"].is_number()) {
+    spec.stop = v["stop"];
+    if (!(spec.stop > spec.start))
+      r.diag.error(r.at(w["stop"]), path + ".stop",
+                   fmt::format("stop ({:g} s) is not after start ({:g} s)", spec.stop, spec.start),
+                   "make stop later than start, or leave it out (the motion never stops)");
+  }
   if (w["velocity"])
     if (auto vel = r.vector(w["velocity"], path + ".velocity", "m/s", "translation velocity")) spec.velocity = *vel;
   const WallKeys keys{r, w, path, type};
@@ -449,6 +477,7 @@ std::optional<WallSpec> read_wall(const ParseContext &r, const YAML::Node &w, st
       read_plane_wall(keys, spec);
       break;
     case WallKind::box:
+    case WallKind::block:
       read_box_wall(keys, spec);
       break;
     case WallKind::cylinder:

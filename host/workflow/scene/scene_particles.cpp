@@ -148,8 +148,8 @@ void check_particles(const SceneFile &scene, const SceneParticles &p) {
       if (!(overlap > allowed)) continue;
       problems.push_back(
           overlap > s.radius[i]
-              ? fmt::format("error: {}: its centre is outside wall '{}' ({}): particles must be on the walls' inner "
-                            "side\n  move the particle, or the wall",
+              ? fmt::format("error: {}: its centre is on the wrong side of wall '{}' ({}): behind a plane, outside "
+                            "a box or a tube, inside a block or a solid cylinder\n  move the particle, or the wall",
                             where(scene, p, i), w.name, w.key_path)
               : fmt::format("error: {}: sinks {:.4g} m into wall '{}' ({}), more than particles.overlap_tolerance = "
                             "{:g} of its diameter\n  move the particle or the wall apart",

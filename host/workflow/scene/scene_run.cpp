@@ -10,10 +10,10 @@ bool advance_scene(SceneRun<Real> &run, double t, const typename engine::Simulat
   auto &sim = *run.sim;
   std::vector<DelayedMotion> due;
   for (const auto &m : run.delayed)
-    if (m.start >= sim.time() && m.start <= t) due.push_back(m);
-  std::sort(due.begin(), due.end(), [](const auto &a, const auto &b) { return a.start < b.start; });
+    if (m.time >= sim.time() && m.time <= t) due.push_back(m);
+  std::sort(due.begin(), due.end(), [](const auto &a, const auto &b) { return a.time < b.time; });
   for (const auto &m : due) {
-    if (!sim.run_until(m.start, keep_going, every)) return false;
+    if (!sim.run_until(m.time, keep_going, every)) return false;
     sim.set_plane_wall_velocity(m.plane, m.velocity);
   }
   return sim.run_until(t, keep_going, every);

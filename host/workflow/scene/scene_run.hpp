@@ -1,6 +1,6 @@
-// Time for a built scene: advance it to a time, starting the plane walls' delayed motions (a wall
-// whose translation starts later than 0) exactly at their start on the way. Stateless and
-// idempotent: a motion already started is set again to the same velocity.
+// Time for a built scene: advance it to a time, starting and stopping the plane walls' motions (a
+// wall whose translation starts later than 0, or stops) exactly at their times on the way. Stateless
+// and idempotent: a velocity already set is set again to the same value.
 #pragma once
 #include "workflow/scene/scene_build.hpp"
 

@@ -3,12 +3,14 @@
 #pragma once
 #include <array>
 #include <filesystem>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "core/diagnostics.hpp"
 #include "engine/domain.hpp"
+#include "workflow/scene/block_wall.hpp"
 #include "workflow/scene/cylinder_wall.hpp"
 
 namespace spreadmap::scene {
@@ -16,7 +18,7 @@ namespace spreadmap::scene {
 namespace fs = std::filesystem;
 using Vec = std::array<double, 3>;
 
-enum class WallKind { plane, box, cylinder, spreader };
+enum class WallKind { plane, box, cylinder, block, spreader };
 
 // A spreader plugin as a wall (`type: spreader`), moving as it describes itself through the plugin ABI.
 struct SpreaderWall {
@@ -34,9 +36,11 @@ struct WallSpec {
   Vec lo{0, 0, 0}, hi{0, 0, 0};         // box: particles live inside
   bool open_top = false;                // box: no lid (the plane at hi.z is left out)
   CylinderWall cylinder{};              // cylinder
+  BlockWall block{};                    // block
   SpreaderWall spreader;                // spreader
-  Vec velocity{0, 0, 0};                // planes and boxes translate; a cylinder's velocity is in `cylinder`
+  Vec velocity{0, 0, 0};                // planes and boxes translate; a cylinder's or block's motion is in it
   double start = 0;                     // the motion starts at this time [s]
+  double stop = std::numeric_limits<double>::infinity();  // and stops at this one [s]
   nlohmann::json law;                   // the contact law's parameters for this wall (SI)
 };
 

@@ -37,6 +37,10 @@ double wall_overlap(const WallSpec &w, const Vec &c, double r) {
     if (cyl(Vec3<double>{c[0], c[1], c[2]}, r, 0.0, hit)) return hit.overlap;
     return 0;  // apart (or exactly on the axis inside the body, which the geometry cannot orient)
   }
+  if (w.kind == WallKind::block) {
+    WallHit<double> hit{0, {0, 0, 1}, {0, 0, 0}};
+    return w.block(Vec3<double>{c[0], c[1], c[2]}, r, 0.0, hit) ? hit.overlap : 0;
+  }
   double deepest = -std::numeric_limits<double>::infinity();
   for (const auto &p : planes_of(w)) {
     const double s =
