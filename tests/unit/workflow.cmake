@@ -14,3 +14,6 @@ spreadmap_test(unit roughness SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_roughne
 add_dependencies(test_unit_roughness plugin_contact_hooke_slider plugin_spreader_roller)
 # A scene file's block wall: the closed-form contact with its faces, edges and corners, and its motion.
 spreadmap_test(unit block_wall SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_block_wall_test.cpp LIBS spreadmap_workflow)
+# scene.machine as blocks: the floor's tiling, the layers' places and the strokes.
+spreadmap_test(unit machine_layout SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_machine_layout_test.cpp
+               LIBS spreadmap_workflow)

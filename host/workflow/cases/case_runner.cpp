@@ -9,6 +9,7 @@
 #include "workflow/cases/heap_cache.hpp"
 #include "workflow/spreading/layer_feed.hpp"
 #include "workflow/cases/layers.hpp"
+#include "workflow/cases/machine_layers.hpp"
 #include "workflow/cases/spread_pass.hpp"
 
 namespace spreadmap {
@@ -58,10 +59,12 @@ nlohmann::json run_case(const CaseRequest &request, PluginRegistry &registry) {
   if (request.threads > 0) omp_set_num_threads(request.threads);
   CaseRequest effective = request;  // the scene the engine runs: coarse graining applied
   effective.scene = coarse_grained(request.scene, registry);
-  const bool layered = effective.scene.layers.count > 1;
-  if (effective.scene.precision == Precision::float32)
-    return layered ? spread_layers<float>(effective, registry) : spread_one_layer<float>(effective, registry);
-  return layered ? spread_layers<double>(effective, registry) : spread_one_layer<double>(effective, registry);
+  const bool single = effective.scene.precision == Precision::float32;
+  if (effective.scene.machine)
+    return single ? spread_machine_layers<float>(effective, registry) : spread_machine_layers<double>(effective, registry);
+  const bool layers = effective.scene.layers.count > 1;
+  if (single) return layers ? spread_layers<float>(effective, registry) : spread_one_layer<float>(effective, registry);
+  return layers ? spread_layers<double>(effective, registry) : spread_one_layer<double>(effective, registry);
 }
 
 }  // namespace spreadmap

@@ -66,6 +66,7 @@ std::string heap_hash(const Scene &scene, PluginRegistry &registry) {
   nlohmann::json body = to_json(describe_spreader(scene, registry, "scene.json"));
   for (const char *k : {"end", "speed", "duration"}) body.erase(k);
   s["spreader"] = {{"use", scene.spreader.use}, {"law", scene.spreader.law}, {"at_rest", body}};
+  if (all.contains("machine")) s["machine"] = all["machine"];  // the reservoir it fills
   return stable_hash(s.dump());
 }
 

@@ -1,14 +1,12 @@
 #include "workflow/cases/layers.hpp"
 
-#include <spdlog/spdlog.h>
-
 #include <optional>
 
 #include "core/files.hpp"
-#include "engine/vtp_io.hpp"
 #include "workflow/cases/case_record.hpp"
 #include "workflow/spreading/case_setup.hpp"
 #include "workflow/cases/heap_cache.hpp"
+#include "workflow/cases/layered_case.hpp"
 #include "workflow/spreading/layer_feed.hpp"
 #include "workflow/cases/spread_pass.hpp"
 
@@ -40,9 +38,8 @@ template <class Real> nlohmann::json spread_layers(const CaseRequest &req, Plugi
   for (int k = 1; k <= count; ++k) {
     const fs::path dir = req.dir / layer_folder(k);
     const std::string name = req.id + " layer " + std::to_string(k);
-    if (record_finished(dir, "layer.json", hash)) {
-      spdlog::info("{}: finished before, read back", name);
-      bed = engine::read_vtp(dir / "state.vtp").particles;
+    if (auto finished = finished_layer(dir, hash, name)) {
+      bed = std::move(*finished);
       layers.push_back(nlohmann::json::parse(read_text(dir / "layer.json")));
       fed += layers.back().value("particles_fed", std::size_t(0));
       continue;
@@ -80,31 +77,9 @@ template <class Real> nlohmann::json spread_layers(const CaseRequest &req, Plugi
     fed += fed_here;
     layers.push_back(write_finished_record(dir, "layer.json", record));
   }
-  // the case's state: the last layer's, byte for byte
-  write_atomic(req.dir / "state.vtp", read_text(req.dir / layer_folder(count) / "state.vtp"));
-  const nlohmann::json &last = layers.back();
-  std::size_t removed = 0;
-  double steps = 0;
-  for (const auto &l : layers) {
-    removed += l.value("removed", std::size_t(0)) + l.value("removed_settling", std::size_t(0));
-    steps += l.value("steps", 0.0);
-  }
-  nlohmann::json out = {{"id", req.id},
-                        {"hash", hash},
-                        {"status", "done"},
-                        {"inputs", req.inputs},
-                        {"layers", layers},
-                        {"particles_start", heap.size()},
-                        {"particles_fed", fed},
-                        {"particles_end", bed.size()},
-                        {"removed", removed},
-                        {"steps", steps},
-                        {"simulated_time", last["simulated_time"]},
-                        {"precision", precision_name(scene.precision)},
-                        {"spreader", last["spreader"]},
-                        {"spreader_end", last["spreader_end"]}};
-  if (substrate.size() > 0) out["substrate"] = substrate_record(substrate);
-  return write_finished_record(req.dir, "case.json", out);
+  nlohmann::json extra = {{"particles_start", heap.size()}, {"particles_fed", fed}, {"particles_end", bed.size()}};
+  if (substrate.size() > 0) extra["substrate"] = substrate_record(substrate);
+  return finish_layered_case(req, hash, layers, extra);
 }
 
 std::string layer_folder(int layer) { return "layer_" + std::to_string(layer); }

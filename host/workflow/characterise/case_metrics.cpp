@@ -14,6 +14,7 @@
 #include "workflow/spreading/case_setup.hpp"
 #include "workflow/cases/case_runner.hpp"
 #include "workflow/spreading/layer_feed.hpp"
+#include "workflow/spreading/machine_layout.hpp"
 
 namespace spreadmap {
 namespace {
@@ -47,6 +48,14 @@ void read_bounds(const YAML::Node &n, const std::string &file, const std::string
   }
 }
 
+// A machine's layer k is measured in its platform's frame: heights above the platform (which dropped
+// k x thickness below the plates), the spreader's lower edge k x thickness + gap above it.
+void on_platform(const Scene &scene, int layer, engine::ParticleSet &particles, LayerRequest &rq) {
+  const double lift = -machine_layout(scene).platform_top(layer);
+  for (double &z : particles.z) z += lift;
+  rq.gap += lift;
+}
+
 // Layer k (1..count) of a multi-layer case is read from its layer_K folder: the whole bed after k
 // passes, heights from the plate (z = 0), the gap the raised one (gap + drop), so packing and solid
 // thickness stay consistent. layer_height = mean height - the platform's drop: the powder's mean top
@@ -58,7 +67,7 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
                         const std::string &id, const std::string &key, int layer) {
   const Scene scene = read_scene_file(case_dir / "scene.json");
   const fs::path dir = layer ? case_dir / layer_folder(layer) : case_dir;
-  const auto particles = read_particle_file(dir / "state.vtp");
+  auto particles = read_particle_file(dir / "state.vtp");
   LayerRequest rq = settings.request;
   rq.region = settings.region;
   if (scene.domain.periodic_y) rq.periodic_y = std::make_pair(0.0, scene.domain.width);
@@ -68,6 +77,7 @@ nlohmann::json evaluate(PluginRegistry &registry, const CharacteriseSettings &se
   take_spreader(rq, describe_spreader(spread_by, registry, case_dir / "scene.json"));
   rq.substrate_z = substrate_level(scene);  // 0 on the flat plate
   rq.gap -= rq.substrate_z;
+  if (scene.machine) on_platform(scene, layer, particles, rq);
   LayerResult r = characterise_layer(registry, rq, particles);
   if (layer && r.metrics.value("mean_height", nlohmann::json()).is_number()) {
     r.metrics["layer_height"] = r.metrics["mean_height"].get<double>() - platform_drop(scene, layer);

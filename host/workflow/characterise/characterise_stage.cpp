@@ -25,6 +25,7 @@
 #include "workflow/cases/case_runner.hpp"
 #include "workflow/spreading/case_setup.hpp"
 #include "workflow/spreading/layer_feed.hpp"
+#include "workflow/spreading/machine_layout.hpp"
 #include "workflow/stage/stage.hpp"
 #include "workflow/run/run_dir.hpp"
 #include "workflow/spreading/scene_model.hpp"
@@ -84,9 +85,9 @@ class CharacteriseStage : public Stage {
       }
       // one row per layer of a multi-layer case (layer 0: a single pass, as its own folder holds it)
       const Scene scene = read_scene_file(dir / "scene.json");
-      const int layers = static_cast<int>(scene.layers.count);
+      const int layers = layered(scene) ? static_cast<int>(scene.layers.count) : 0;
       const std::size_t first = results.size();
-      for (int layer = layers > 1 ? 1 : 0; layer <= (layers > 1 ? layers : 0); ++layer) {
+      for (int layer = layers ? 1 : 0; layer <= layers; ++layer) {
         // the key rests on the measured state's own hash, so a state simulated again (after a heap or
         // a checkpoint was found damaged, say) is measured again, never described by old metrics
         const std::string key = stable_hash(settings + c.value("hash", "") + state_fingerprint(dir, layer) +
@@ -98,7 +99,7 @@ class CharacteriseStage : public Stage {
         if (c.contains("point")) doc["point"] = c["point"], doc["replicate"] = c["replicate"];
         results.push_back(doc);
       }
-      if (layers > 1) add_layer_thicknesses(ctx, scene, dir, results.begin() + static_cast<std::ptrdiff_t>(first));
+      if (layers) add_layer_thicknesses(ctx, scene, dir, results.begin() + static_cast<std::ptrdiff_t>(first));
     }
     if (missing)
       spdlog::warn("characterise: {} of {} cases have no finished state; run the simulate stage to complete them",
@@ -123,8 +124,10 @@ class CharacteriseStage : public Stage {
     const double level = substrate_level(scene);  // heights are measured from it (0: the flat plate)
     for (int k = 1; k <= layers; ++k) {
       const auto &m = rows[k - 1]["metrics"];
-      beds.push_back({describe_spreader(layer_scene(scene, k), ctx.registry, dir / "scene.json").gap - level,
-                      number(m, "mean_height"), number(m, "solid_thickness")});
+      const double gap = describe_spreader(layer_scene(scene, k), ctx.registry, dir / "scene.json").gap;
+      // a machine's bed is measured from its platform, which dropped k x thickness below the plates
+      const double edge = scene.machine ? machine_layout(scene).edge_above_platform(gap, k) : gap - level;
+      beds.push_back({edge, number(m, "mean_height"), number(m, "solid_thickness")});
     }
     const auto thickness = layer_thicknesses(beds);
     for (int k = 1; k <= layers; ++k) {

@@ -6,6 +6,7 @@
 #include "core/units.hpp"
 #include "engine/csv_input.hpp"
 #include "engine/vtp_io.hpp"
+#include "workflow/spreading/machine_layout.hpp"
 
 namespace spreadmap {
 
@@ -89,9 +90,13 @@ Region parse_region(const std::string &text, const std::string &what) {
 
 // Default sampling region. Full-width scenes: the study's 50 mm x 50 mm square centred on the
 // substrate. Periodic strips: the whole width over the middle 40 % of the spreader's travel, clear
-// of the heap at the start and of the spreader's wake at the end.
+// of the heap at the start and of the spreader's wake at the end. A machine: its build platform.
 Region default_region(const Scene &scene, const sm_spreader_description_v2 &spreader) {
   const double length = scene.domain.length, width = scene.domain.width;
+  if (scene.machine) {
+    const MachineLayout l = machine_layout(scene);
+    return {l.well_from, l.well_to, 0.0, width};
+  }
   if (!scene.domain.periodic_y) {
     const double side = 0.05;
     return {length / 2 - side / 2, length / 2 + side / 2, width / 2 - side / 2, width / 2 + side / 2};

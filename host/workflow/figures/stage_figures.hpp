@@ -12,6 +12,7 @@
 #include "analysis/optimum.hpp"
 #include "analysis/report.hpp"
 #include "engine/particle_set.hpp"
+#include "workflow/spreading/scene_model.hpp"
 
 namespace spreadmap::figures {
 

@@ -56,14 +56,15 @@ class SimulateStage : public Stage {
       diag.error(Location::of(file, entry.config["replicates"]), "simulate.replicates",
                  "an adaptive design runs one heap per case",
                  "remove replicates, or use a full_factorial or list design");
-    if (scene->layers.count > 1 && design_.type == "adaptive")
+    if (layered(*scene) && design_.type == "adaptive")
       diag.error(Location::of(file, entry.config["design"]), "simulate.design",
                  "an adaptive design measures one pass; a multi-layer scene is not supported yet",
-                 "use a full_factorial or list design, or spread one layer (scene.layers.count: 1)");
-    if (scene->layers.count > 1 && replicates_ > 1)
+                 "use a full_factorial or list design, or spread one layer on a plate (scene.layers.count: 1, no "
+                 "scene.machine)");
+    if (layered(*scene) && replicates_ > 1)
       diag.error(Location::of(file, entry.config["replicates"]), "simulate.replicates",
                  "replicates of a multi-layer scene are not supported yet",
-                 "remove replicates, or spread one layer (scene.layers.count: 1)");
+                 "remove replicates, or spread one layer on a plate (scene.layers.count: 1, no scene.machine)");
   }
 
   void run(StageContext &ctx) override {

@@ -9,8 +9,11 @@
 #include "core/error.hpp"
 #include "core/stop.hpp"
 #include "powder/heap.hpp"
-#include "workflow/spreading/powder_sizes.hpp"
+#include "workflow/spreading/case_scene.hpp"
 #include "workflow/spreading/layer_feed.hpp"
+#include "workflow/spreading/machine_layout.hpp"
+#include "workflow/spreading/machine_setup.hpp"
+#include "workflow/spreading/powder_sizes.hpp"
 
 namespace spreadmap {
 
@@ -48,100 +51,10 @@ sm_spreader_description_v2 describe_spreader(const Scene &scene, PluginRegistry 
   return scene::BoundSpreader{&spreader, 0.0}.description();
 }
 
-namespace {
-
-using scene::WallKind;
-using scene::WallSpec;
-
-WallSpec plane(const std::string &name, const std::string &key, const std::array<double, 3> &point,
-               const std::array<double, 3> &normal, const nlohmann::json &law) {
-  WallSpec w;
-  w.kind = WallKind::plane;
-  w.name = name;
-  w.key_path = key;
-  w.point = point;
-  w.normal = normal;
-  w.law = law;
-  return w;
-}
-
-WallSpec spreader_wall(const Scene &scene, PluginRegistry &reg, double time_offset) {
-  WallSpec w;
-  w.kind = WallKind::spreader;
-  w.name = reg.get("spreader", scene.spreader.use).id();
-  w.key_path = "scene.spreader";
-  w.spreader = {scene.spreader.use, scene.spreader.params, time_offset};
-  w.law = scene.spreader.law;
-  return w;
-}
-
-// What every scene of a case shares: the domain, gravity, the laws and the engine's settings.
-scene::LoadedScene case_scene(const Scene &spreading, const fs::path &scene_file) {
-  scene::LoadedScene l;
-  auto &s = l.scene;
-  s.file = scene_file;
-  s.name = "case";
-  s.domain = make_domain(spreading);
-  s.gravity = {0, 0, -spreading.gravity};
-  s.law = spreading.contact.use;
-  s.pair_law = spreading.contact.params;
-  s.particles.density = spreading.powder.density;
-  const TimeSettings &t = spreading.time;
-  s.run.dt = t.step;
-  s.run.safety = t.safety;
-  s.run.skin = t.skin;
-  s.run.overlap_limit = t.overlap_limit;
-  s.run.sleep = t.sleep;
-  s.run.sleep_speed = t.sleep_speed;
-  s.run.log_engine = false;  // a workflow runs many cases: the engine's messages at debug
-  s.backend = spreading.backend;
-  return l;
-}
-
-// The spreader rests at its start for t < 0: while a heap settles it sees times before that.
-double rest_shift(const Scene &scene) { return -(scene.powder.settle_time + 1.0); }
-
-// No sphere within a twentieth of the largest diameter of the spreader at rest.
-double heap_clearance(const Scene &scene) { return 0.05 * size_distribution(scene.powder).upper(); }
-
-// Runs a settling scene under gravity for at least 0.3 x settle_time and at most settle_time, until
-// the fastest sphere is slower than settle_speed. Throws Interrupted on SIGINT/SIGTERM.
-template <class Real>
-ParticleSet settle_scene(const scene::LoadedScene &settling, PluginRegistry &reg, const Powder &powder,
-                         const std::string &label, const std::string &what,
-                         const std::function<void(double)> &progress) {
-  const double t_settle = powder.settle_time, v_rest = powder.settle_speed;
-  const auto run = scene::build_scene<Real>(settling, reg);
-  auto &sim = *run->sim;
-  const double min_time = 0.3 * t_settle;
-  sim.run_until(
-      t_settle,
-      [&](const engine::Simulation<Real> &s) {
-        if (stop_requested()) return false;
-        if (progress) progress(s.time() / t_settle);
-        if (s.time() < min_time) return true;
-        const auto &a = s.arrays();
-        Real vmax2 = 0;
-        for (std::size_t i = 0; i < a.size(); ++i)
-          vmax2 = std::max(vmax2, a.vx[i] * a.vx[i] + a.vy[i] * a.vy[i] + a.vz[i] * a.vz[i]);
-        return std::sqrt(double(vmax2)) > v_rest;
-      },
-      200);
-  if (stop_requested())
-    throw Interrupted("interrupted while settling the " + what + " of " + label +
-                      ": run the same command again to resume");
-  auto state = sim.state();
-  spdlog::info("{}: {} settled after {:.3g} s ({} steps, {} removed)", label, what, sim.time(), sim.step_count(),
-               sim.removed_count());
-  return state;
-}
-
-}  // namespace
-
 engine::Domain make_domain(const Scene &scene) {
   const SpreadingBox &d = scene.domain;
   engine::Domain dom;
-  dom.lo = {0, 0, 0};
+  dom.lo = {0, 0, scene.machine ? machine_layout(scene).bottom : 0.0};
   dom.hi = {d.length, d.width, d.height};
   dom.periodic = {d.periodic_x, d.periodic_y, false};
   return dom;
@@ -149,7 +62,8 @@ engine::Domain make_domain(const Scene &scene) {
 
 scene::LoadedScene spreading_scene(const Scene &spreading, const ParticleSet &heap, const fs::path &scene_file) {
   auto l = case_scene(spreading, scene_file);
-  l.scene.walls = {plane("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, spreading.substrate.law)};
+  if (spreading.machine) l.scene.walls = machine_walls(spreading, false);
+  else l.scene.walls = {plane_wall("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, spreading.substrate.law)};
   l.particles.set = heap;
   return l;
 }
@@ -157,6 +71,7 @@ scene::LoadedScene spreading_scene(const Scene &spreading, const ParticleSet &he
 template <class Real>
 ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::string &label, const fs::path &scene_file,
                         const std::function<void(double)> &progress) {
+  if (scene.machine) return fill_reservoir<Real>(scene, reg, label, scene_file, progress);
   const Powder &powder = scene.powder;
   const auto dom = make_domain(scene);
   const PluginInstance spreader = bind_spreader(scene, reg, scene_file);
@@ -190,11 +105,11 @@ ParticleSet settle_heap(const Scene &scene, PluginRegistry &reg, const std::stri
   settling.particles.set.z = heap.z;
   settling.particles.set.radius = heap.r;
   const auto &wall_law = scene.spreader.law;
-  settling.scene.walls = {plane("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, scene.substrate.law),
-                          plane("heap back wall", "scene.spreader", {spec.region.lo[0], 0, 0}, {1, 0, 0}, wall_law),
-                          plane("heap front wall", "scene.spreader", {spec.region.hi[0], 0, 0}, {-1, 0, 0}, wall_law),
+  settling.scene.walls = {plane_wall("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, scene.substrate.law),
+                          plane_wall("heap back wall", "scene.spreader", {spec.region.lo[0], 0, 0}, {1, 0, 0}, wall_law),
+                          plane_wall("heap front wall", "scene.spreader", {spec.region.hi[0], 0, 0}, {-1, 0, 0}, wall_law),
                           spreader_wall(scene, reg, rest_shift(scene))};
-  return settle_scene<Real>(settling, reg, scene.powder, label, "heap", progress);
+  return settle_scene<Real>(settling, reg, powder_settle_rule(scene.powder), label, "heap", progress);
 }
 
 ParticleSet fed_onto_bed(const Scene &scene, PluginRegistry &reg, const fs::path &scene_file, const ParticleSet &bed,
@@ -230,9 +145,10 @@ ParticleSet settle_on_bed(const Scene &scene, PluginRegistry &reg, const std::st
                           const ParticleSet &fed, const std::function<void(double)> &progress) {
   auto settling = case_scene(scene, scene_file);
   settling.particles.set = fed;
-  settling.scene.walls = {plane("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, scene.substrate.law),
+  settling.scene.walls = {plane_wall("substrate", "scene.substrate", {0, 0, 0}, {0, 0, 1}, scene.substrate.law),
                           spreader_wall(scene, reg, rest_shift(scene))};
-  return settle_scene<Real>(settling, reg, scene.powder, label, "heap fed onto the bed", progress);
+  return settle_scene<Real>(settling, reg, powder_settle_rule(scene.powder), label, "heap fed onto the bed",
+                            progress);
 }
 
 template <class Real>

@@ -14,6 +14,10 @@ double platform_drop(const Scene &scene, int layer) { return double(layer - 1) *
 
 Scene layer_scene(const Scene &scene, int layer) {
   Scene out = scene;
+  if (out.machine) {  // the platform itself drops
+    out.machine->layer = layer;
+    return out;
+  }
   const double raise = substrate_level(scene) + platform_drop(scene, layer);
   if (raise != 0) out.spreader.params["gap"] = scene.spreader.params["gap"].get<double>() + raise;
   return out;

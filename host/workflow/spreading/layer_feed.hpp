@@ -25,7 +25,8 @@ double platform_drop(const Scene &scene, int layer);
 
 // The scene of layer k: the spreader's gap raised by the substrate's mean plane (0 for the flat
 // plate, workflow/spreading/substrate_roughness.hpp) and platform_drop(scene, k). Layer 1's on the flat
-// plate is `scene`.
+// plate is `scene`. A machine's (scene.machine) keeps its spreader and puts its platform and piston in
+// layer k's places instead (machine_layout.hpp).
 Scene layer_scene(const Scene &scene, int layer);
 
 // The rough substrate's spheres, fixed, numbered from 0: the bed the first heap is fed onto. Empty for

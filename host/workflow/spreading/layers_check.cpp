@@ -17,7 +17,7 @@ double estimated_heap_height(const Scene &scene) {
 void check_layers(const Scene &scene, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
                   Diagnostics &diag) {
   const Layers &layers = scene.layers;
-  if (layers.count <= 1) return;
+  if (layers.count <= 1 || scene.machine) return;  // a machine's layers: machine_check.hpp
   const YAML::Node section = user["layers"];
   auto where = [&](const char *key) {
     if (section && section.IsMap() && section[key]) return Location::of(file, section[key]);

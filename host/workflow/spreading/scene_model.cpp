@@ -81,6 +81,19 @@ void fields(L &l, F &&f) {
   f("thickness", l.thickness);
 }
 
+template <class M, class F>
+requires std::same_as<std::remove_const_t<M>, Machine>
+void fields(M &m, F &&f) {
+  f("reservoir_from", m.reservoir_from);
+  f("reservoir_length", m.reservoir_length);
+  f("reservoir_depth", m.reservoir_depth);
+  f("plate_length", m.plate_length);
+  f("well_length", m.well_length);
+  f("lip_length", m.lip_length);
+  f("dosing", m.dosing);
+  f("stroke_speed", m.stroke_speed);
+}
+
 template <class R, class F>
 requires std::same_as<std::remove_const_t<R>, Roughness>
 void fields(R &r, F &&f) {
@@ -179,6 +192,8 @@ template <class T> T read_section(JsonReader &parent, const char *key) {
 
 }  // namespace
 
+bool layered(const Scene &scene) { return scene.layers.count > 1 || scene.machine.has_value(); }
+
 const char *precision_name(Precision precision) { return precision == Precision::float32 ? "float" : "double"; }
 
 json to_json(const Scene &s) {
@@ -191,7 +206,8 @@ json to_json(const Scene &s) {
   if (s.substrate.roughness) out["substrate"]["roughness"] = written(*s.substrate.roughness);  // flat: absent
   if (s.substrate.height_map) out["substrate"]["height_map"] = written(*s.substrate.height_map);
   out["spreader"] = {{"use", s.spreader.use}, {"params", s.spreader.params}, {"law", s.spreader.law}};
-  if (s.layers.count > 1) out["layers"] = written(s.layers);  // absent for one layer: hashes unchanged
+  if (layered(s)) out["layers"] = written(s.layers);  // absent for one layer on a plate: hashes unchanged
+  if (s.machine) out["machine"] = written(*s.machine);
   return out;
 }
 
@@ -217,6 +233,7 @@ Scene scene_from_json(const json &in, const std::string &source) {
   s.spreader.law = spreader.object("law");
   spreader.no_other_keys();
   if (top.has("layers")) s.layers = read_section<Layers>(top, "layers");
+  if (top.has("machine")) s.machine = read_section<Machine>(top, "machine");
   top.no_other_keys();
   return s;
 }
@@ -250,6 +267,7 @@ void set_host_key(Scene &scene, const std::string &section, const std::string &k
   else if (section == "powder") fields(scene.powder, set);
   else if (section == "time") fields(scene.time, set);
   else if (section == "layers") fields(scene.layers, set);
+  else if (section == "machine" && scene.machine) fields(*scene.machine, set);
   if (!found) throw InputError("error: " + path + "." + key + ": the scene has no such key");
 }
 

@@ -90,6 +90,23 @@ struct Layers {
   double thickness = 50e-6;  // m, the platform's drop between two passes
 };
 
+// A powder-bed machine (scene.machine; workflow/machine/machine_layout.hpp): along x a plate behind
+// the feed, the feed's reservoir (its floor a piston), a transfer plate, the build well (its floor the
+// platform), a lip and the overflow, a pit the powder falls out of the domain through. The plates'
+// tops are the plane z = 0 the spreader's gap is measured from. Before layer k the platform drops by
+// the layer thickness and the piston rises by dosing x thickness (strokes at stroke_speed); the
+// spreader then spreads from behind the feed over the well into the overflow. Absent (the default):
+// the heap in front of the spreader on a plate, and the section stays out of the scene's JSON form.
+struct Machine {
+  double reservoir_from = 6e-3, reservoir_length = 5e-3, reservoir_depth = 4e-3;  // m
+  double plate_length = 1e-3, well_length = 10e-3, lip_length = 1e-3;            // m
+  double dosing = 2;                                                              // piston rise / thickness
+  double stroke_speed = 5e-3;                                                     // m/s
+  // Which layer's places the platform and piston take in this scene (layer_scene() sets it; 0: the
+  // places they start from). Not a key: it is not in the scene's JSON form.
+  int layer = 0;
+};
+
 enum class Precision { float64, float32 };
 
 struct Scene {
@@ -106,7 +123,11 @@ struct Scene {
   Substrate substrate;
   SpreaderChoice spreader;
   Layers layers;
+  std::optional<Machine> machine;
 };
+
+// Whether a case spreads layer by layer into layer_K folders: several layers, or any machine.
+bool layered(const Scene &scene);
 
 // "double" or "float", as scene.json writes it.
 const char *precision_name(Precision precision);
@@ -121,7 +142,7 @@ Scene read_scene_file(const std::filesystem::path &file);
 void write_scene_file(const std::filesystem::path &file, const Scene &scene);
 
 // Sets one host key (section "" for the top level: precision, gravity ...; else domain, powder,
-// time or layers) from an SI JSON value of the key's type; throws InputError for a key the scene lacks.
+// time, layers or machine) from an SI JSON value of the key's type; throws InputError for a key the scene lacks.
 void set_host_key(Scene &scene, const std::string &section, const std::string &key, const nlohmann::json &value);
 
 }  // namespace spreadmap

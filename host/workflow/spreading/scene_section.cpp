@@ -10,6 +10,7 @@
 #include "workflow/spreading/cohesion_check.hpp"
 #include "workflow/spreading/spreader_check.hpp"
 #include "workflow/spreading/layers_check.hpp"
+#include "workflow/spreading/machine_check.hpp"
 #include "workflow/spreading/powder_cost.hpp"
 #include "workflow/spreading/powder_sizes.hpp"
 #include "workflow/spreading/presets.hpp"
@@ -78,6 +79,19 @@ constexpr sm_param_v1 layers_params[] = {
     sm::number("thickness", "m", 1e-7, 0.1, 50e-6, "layer thickness: the platform's drop before each further pass"),
 };
 
+constexpr sm_param_v1 machine_params[] = {
+    sm::number("reservoir_from", "m", 0, 10, 6e-3, "x where the feed's reservoir starts (behind it: a plate the spreader rests over)"),
+    sm::number("reservoir_length", "m", 1e-5, 10, 5e-3, "the reservoir's length along x"),
+    sm::number("reservoir_depth", "m", 1e-5, 1, 4e-3,
+               "the piston's starting depth below the plates: the powder the feed holds"),
+    sm::number("plate_length", "m", 0, 10, 1e-3, "the transfer plate between the reservoir and the well"),
+    sm::number("well_length", "m", 1e-6, 10, 10e-3, "the build platform's length along x"),
+    sm::number("lip_length", "m", 0, 10, 1e-3, "the plate between the well and the overflow"),
+    sm::number("dosing", "-", 0.1, 100, 2,
+               "the piston's rise per layer over the layer thickness (below 1 the layer cannot fill)"),
+    sm::number("stroke_speed", "m/s", 1e-6, 10, 5e-3, "the speed the platform drops and the piston rises at"),
+};
+
 constexpr sm_param_v1 roughness_params[] = {
     sm::required_number("rq", "m", 0, 0.01,
                         "R_q of the substrate: root-mean-square height of its spheres' tops about their mean plane"),
@@ -111,7 +125,7 @@ constexpr Section host_sections[] = {
 
 const std::vector<std::string> scene_keys = {"preset",    "precision", "backend", "threads", "deterministic",
                                              "gravity",   "domain",    "powder",  "time",    "contact",
-                                             "substrate", "spreader",  "layers"};
+                                             "substrate", "spreader",  "layers",  "machine"};
 
 // The preset's node for a section, overlaid with the user's node (user keys win).
 YAML::Node overlay(const YAML::Node &preset, const YAML::Node &user) {
@@ -358,6 +372,7 @@ std::optional<Scene> typed_and_checked(const nlohmann::json &scene, const YAML::
   }
   check_powder(*typed, powder, file, registry, diag);
   if (diag.empty()) check_layers(*typed, user, file, registry, diag);
+  if (diag.empty()) check_machine(*typed, user, file, registry, diag);
   if (diag.empty()) check_roughness(*typed, user, file, registry, diag);
   if (diag.empty()) check_cohesion(*typed, user, file, registry, diag);
   if (diag.empty()) check_spreader_span(*typed, user, file, registry, diag);
@@ -386,6 +401,9 @@ std::optional<Scene> resolve_scene(const Workflow &wf, PluginRegistry &registry,
   const YAML::Node p = YAML::Load(preset_text(preset));
 
   read_host_sections(p, user, file, scene, diag);
+  if (user["machine"])  // no preset has one: the heap on a plate unless the user describes a machine
+    scene["machine"] = validate_split({machine_params, std::size(machine_params)}, YAML::Node(YAML::NodeType::Map),
+                                      user["machine"], file, "scene.machine", diag);
   const YAML::Node powder = user["powder"] && user["powder"].IsMap() ? user["powder"] : YAML::Node();
   const fs::path scene_dir = fs::path(file).has_parent_path() ? fs::path(file).parent_path() : fs::path(".");
   resolve_size_table(scene["powder"], powder["table"], file, scene_dir, diag);
@@ -433,6 +451,11 @@ bool find_scene_key(const Scene &scene, PluginRegistry &registry, const std::str
       why = "scene." + section + " has no key '" + key + "'";
       return false;
     }
+  if (section == "machine") {
+    if ((out.param = SchemaView{machine_params, std::size(machine_params)}.find(key))) return true;
+    why = "scene.machine has no key '" + key + "'";
+    return false;
+  }
   if (section == "contact" || section == "spreader" || section == "substrate") {
     if (section == "spreader" &&
         (out.param = SchemaView::of(*registry.get("spreader", scene.spreader.use).descriptor).find(key)))

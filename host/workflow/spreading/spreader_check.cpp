@@ -1,27 +1,14 @@
 #include "workflow/spreading/spreader_check.hpp"
 
 #include <fmt/format.h>
-#include <spdlog/spdlog.h>
 
 #include <exception>
-#include <mutex>
-#include <set>
 
+#include "core/warn_once.hpp"
 #include "workflow/spreading/case_setup.hpp"
 #include "workflow/scene/spreader_span.hpp"
 
 namespace spreadmap {
-
-namespace {
-// Whether this process has not said `text` yet: a run resolves its scene once per stage, and the
-// same warning each time would read as many problems.
-bool first_time(const std::string &text) {
-  static std::mutex guard;
-  static std::set<std::string> said;
-  const std::lock_guard<std::mutex> lock(guard);
-  return said.insert(text).second;
-}
-}  // namespace
 
 void check_spreader_span(const Scene &scene, const YAML::Node &user, const std::string &file, PluginRegistry &registry,
                          Diagnostics &diag) {
@@ -35,7 +22,7 @@ void check_spreader_span(const Scene &scene, const YAML::Node &user, const std::
   if (!shortfall) return;
   if (!shortfall->periodic) {
     const std::string text = fmt::format("{}: scene.spreader: {}\n  {}", file, shortfall->what, shortfall->fix);
-    if (first_time(text)) spdlog::warn("{}", text);
+    warn_once(text);
     return;
   }
   const YAML::Node section = user["spreader"];

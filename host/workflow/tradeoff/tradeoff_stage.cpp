@@ -66,9 +66,9 @@ class TradeoffStage : public Stage {
                 Diagnostics &diag) override {
     const std::string file = wf.file.string();
     const YAML::Node &cfg = entry.config;
-    if (scene && scene->layers.count > 1)
+    if (scene && layered(*scene))
       diag.error(entry.where, "tradeoff", "measures one pass; a multi-layer scene is not supported yet",
-                 "spread one layer in the tradeoff's workflow (scene.layers.count: 1)");
+                 "spread one layer on a plate in the tradeoff's workflow (scene.layers.count: 1, no scene.machine)");
     heaps_ = int(setting_count(entry.settings, "heaps"));
     style_ = figures::read_style(cfg["render"], false, false, file, "tradeoff.render", diag);
     render_ = style_.on;

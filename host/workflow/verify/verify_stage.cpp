@@ -92,9 +92,10 @@ class VerifyStage : public Stage {
       diag.error(map->where, "map.rq_max", "the verify stage needs an optimum, and a map without rq_max proposes none",
                  "give the map stage a target roughness, e.g. rq_max: [110 um]");
     if (!scene) return;
-    if (scene->layers.count > 1)
+    if (layered(*scene))
       diag.error(entry.where, "verify", "verifies one pass; a multi-layer scene is not supported yet",
-                 "verify the optimum in a workflow that spreads one layer (scene.layers.count: 1)");
+                 "verify the optimum in a workflow that spreads one layer on a plate (scene.layers.count: 1, no "
+                 "scene.machine)");
     Diagnostics theirs;  // the characterise stage reports its own problems
     settings_ = read_characterise_settings(wf, characterise ? characterise->config : YAML::Node(YAML::NodeType::Map),
                                            scene, registry, theirs);
