@@ -13,7 +13,8 @@ namespace spreadmap::engine {
 
 namespace {
 constexpr char magic[16] = "spreadmap-ckpt";
-constexpr std::uint32_t format_version = 3;  // 2: sleeping (mobile, calm, the sleep region); 3: checksum
+// 2: sleeping (mobile, calm, the sleep region); 3: checksum; 4: the sleep region's depth bound
+constexpr std::uint32_t format_version = 4;
 }  // namespace
 
 template <class Real> void Simulation<Real>::save_checkpoint(const std::filesystem::path &path) const {
@@ -42,6 +43,7 @@ template <class Real> void Simulation<Real>::save_checkpoint(const std::filesyst
   w.value(state_.counters.removed);
   w.value(state_.counters.list_builds);
   w.value(sleep_x_max_);
+  w.value(sleep_z_max_);
   w.value<std::uint64_t>(asleep_at_build_);
 
   auto &p = const_cast<ParticleArrays<Real> &>(state_.particles);
@@ -121,6 +123,7 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   state_.counters.removed = r.value<std::uint64_t>();
   state_.counters.list_builds = r.value<std::uint64_t>();
   sleep_x_max_ = r.value<double>();
+  sleep_z_max_ = r.value<double>();
   asleep_at_build_ = r.value<std::uint64_t>();
 
   auto &p = state_.particles;

@@ -56,9 +56,9 @@ struct Settings {
   // on it. false: every step on all threads (benchmarks of a fixed team).
   bool tune_threads = true;
 
-  // Sleeping particles (off by default). A particle below x = set_sleep_region()'s bound that is slower
-  // than sleep_speed (the surface speed of its spin too) at sleep_checks checks in a row, one every
-  // sleep_check_every steps, falls asleep: it is no longer integrated (it stays exactly where it is, at
+  // Sleeping particles (off by default). A particle in set_sleep_region()'s region (below its x bound,
+  // or below its z bound) that is slower than sleep_speed (the surface speed of its spin too) at
+  // sleep_checks checks in a row, one every sleep_check_every steps, falls asleep: it is no longer integrated (it stays exactly where it is, at
   // rest), and a pair of two sleeping particles leaves the neighbour list. It wakes when a touching
   // neighbour moves faster than sleep_speed, or a geometry or a moving plane wall touches it. Needs a
   // pair law without history (the tangential springs of two sleeping spheres are not kept).

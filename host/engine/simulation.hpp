@@ -98,8 +98,12 @@ template <class Real = double> class Simulation {
   std::string backend_name() const { return backend_ ? backend_->name() : "cpu"; }
 
   // --- sleeping (Settings::sleep) --------------------------------------------------------------
-  // Particles with x below x_max may fall asleep from now on (-infinity, the start: none may).
-  void set_sleep_region(double x_max) { sleep_x_max_ = x_max; }
+  // Particles with x below x_max, or z below z_max, may fall asleep from now on (-infinity, the
+  // start: none may): behind a spreader, or buried under the layers above.
+  void set_sleep_region(double x_max, double z_max = -std::numeric_limits<double>::infinity()) {
+    sleep_x_max_ = x_max;
+    sleep_z_max_ = z_max;
+  }
   std::size_t sleeping_count() const { return asleep_; }
   // Integrate rotation even when no law makes torque (benchmarks: the cost of what is skipped).
   void force_rotation(bool on);
@@ -171,6 +175,7 @@ template <class Real = double> class Simulation {
   // Sleeping: where particles may fall asleep, how many are, and the awake particles listed with a
   // sleeping neighbour (those whose motion can wake one).
   double sleep_x_max_ = -std::numeric_limits<double>::infinity();
+  double sleep_z_max_ = -std::numeric_limits<double>::infinity();
   std::size_t asleep_ = 0, asleep_at_build_ = 0;
   // Fixed particles (mobile 0 and 1/m = 0 for good): integrated as sleeping ones are, never woken.
   std::size_t fixed_ = 0;

@@ -75,7 +75,7 @@ template <class Real> void Simulation<Real>::update_sleep() {
     for (std::uint32_t j : woken) wake(j);
   }
   if (state_.step % state_.settings.sleep_check_every != 0) return;
-  const Real x_max = Real(sleep_x_max_);
+  const Real x_max = Real(sleep_x_max_), z_max = Real(sleep_z_max_);
   const std::uint32_t needed = state_.settings.sleep_checks;
   std::uint32_t fell = 0;
   const std::size_t n = p.size();
@@ -85,7 +85,7 @@ template <class Real> void Simulation<Real>::update_sleep() {
     for (std::size_t ii = lo; ii < hi; ++ii) {
       const auto i = static_cast<std::uint32_t>(ii);
       if (p.mobile[i] == 0) continue;
-      const bool rest = p.x[i] < x_max && !fast(i);
+      const bool rest = (p.x[i] < x_max || p.z[i] < z_max) && !fast(i);
       p.calm[i] = rest ? p.calm[i] + 1 : 0;
       if (p.calm[i] < needed) continue;
       p.mobile[i] = 0;

@@ -10,6 +10,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <gtest/gtest.h>
 #include <memory>
 #include <omp.h>
@@ -268,6 +269,24 @@ TEST(EngineSleep, ARestingHeapSleepsStaysExactlyPutAndLeavesTheList) {
   EXPECT_LT(integrated_share, 0.1);
 }
 
+TEST(EngineSleep, BelowADepthBoundOnlyTheBuriedSpheresSleep) {
+  // No x region (-infinity): only spheres whose centre lies below half the heap's height may sleep.
+  RestingHeap heap;
+  auto &sim = *heap.sim;
+  const double bound = 0.5 * top_of(sim);
+  std::size_t below = 0;
+  for (std::size_t i = 0; i < sim.size(); ++i) below += sim.arrays().z[i] < bound;
+  sim.set_sleep_region(-std::numeric_limits<double>::infinity(), bound);
+  sim.run_steps(2000);
+  std::size_t asleep_above = 0;
+  for (std::size_t i = 0; i < sim.size(); ++i) asleep_above += sim.arrays().mobile[i] == 0 && sim.arrays().z[i] >= bound;
+  std::printf("%zu of the %zu spheres below z = %.3g mm sleep, %zu above\n", sim.sleeping_count(), below, bound * 1e3,
+              asleep_above);
+  EXPECT_EQ(asleep_above, 0u) << "a sphere above the bound fell asleep";
+  EXPECT_GT(sim.sleeping_count(), below * 9 / 10) << "the buried spheres at rest should sleep";
+  EXPECT_LE(sim.sleeping_count(), below);
+}
+
 TEST(EngineSleep, ASphereDroppedOnTheSleepingHeapWakesItAndDoesNotFallThrough) {
   RestingHeap heap;
   auto &sim = *heap.sim;
@@ -292,7 +311,7 @@ TEST(EngineSleep, ResumeIsBitwiseIdentical) {
   const auto path = std::filesystem::temp_directory_path() / ("engine_sleep_" + std::to_string(::getpid()) + ".bin");
   RestingHeap heap(150);
   auto &whole = *heap.sim;
-  whole.set_sleep_region(0.006);  // half the box
+  whole.set_sleep_region(0.006, 0.002);  // half the box, and the spheres below 2 mm
   whole.run_steps(700);
   whole.save_checkpoint(path);
   whole.run_steps(700);

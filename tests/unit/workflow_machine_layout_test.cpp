@@ -4,6 +4,8 @@
 // strokes move the piston and the platform from layer k - 1's places to layer k's at stroke_speed.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include "workflow/spreading/machine_layout.hpp"
 
 namespace spreadmap {
@@ -15,7 +17,17 @@ Scene machine_scene() {
   s.powder.distribution = "mono";
   s.powder.diameter = 250e-6;
   s.layers = {10, 500e-6};
-  s.machine = Machine{6e-3, 5e-3, 11e-3, 1e-3, 10e-3, 1e-3, 2, 20e-3, 3};
+  Machine m;
+  m.reservoir_from = 6e-3;
+  m.reservoir_length = 5e-3;
+  m.reservoir_depth = 11e-3;
+  m.plate_length = 1e-3;
+  m.well_length = 10e-3;
+  m.lip_length = 1e-3;
+  m.dosing = 2;
+  m.stroke_speed = 20e-3;
+  m.layer = 3;
+  s.machine = m;
   return s;
 }
 
@@ -60,6 +72,15 @@ TEST(MachineLayout, StrokesMoveThePistonAndThePlatformFromTheLayerBeforeAtStroke
   platform.pose(1.0, &pose);
   EXPECT_NEAR(pose.reference[2] + (platform.hi[2] - platform.lo[2]), -3 * 500e-6, 1e-15);
   for (std::size_t i : {0u, 2u, 4u}) EXPECT_EQ(walls[i].block.max_surface_speed(), 0.0) << "plates never move";
+}
+
+TEST(MachineLayout, TheBuriedPowderSleepsBelowTheFreshLayerBySleepDepth) {
+  Scene s = machine_scene();
+  EXPECT_EQ(sleep_below(s), -std::numeric_limits<double>::infinity()) << "sleep_depth 0: none by depth";
+  s.machine->sleep_depth = 1e-3;
+  EXPECT_DOUBLE_EQ(sleep_below(s), -(500e-6 + 1e-3));  // the plates less one layer, less the depth
+  s.machine.reset();
+  EXPECT_EQ(sleep_below(s), -std::numeric_limits<double>::infinity()) << "no machine: none by depth";
 }
 
 }  // namespace

@@ -166,10 +166,10 @@ template <class Real>
 bool run_spreading(engine::Simulation<Real> &sim, const scene::BoundSpreader &spreader, const Scene &spreading,
                    double t_end, const typename engine::Simulation<Real>::StepCallback &callback, std::uint64_t every) {
   const bool sleep = spreading.time.sleep;
-  const double behind = spreading.time.sleep_behind;
+  const double behind = spreading.time.sleep_behind, buried = sleep_below(spreading);
   auto follow = [&] {
     if (!sleep) return;
-    sim.set_sleep_region(spreader.pose(sim.time()).x_min - behind);  // behind its trailing edge
+    sim.set_sleep_region(spreader.pose(sim.time()).x_min - behind, buried);  // behind its trailing edge, or deep
   };
   follow();
   return sim.run_until(

@@ -75,7 +75,8 @@ std::unique_ptr<SpreadingRun<Real>> make_spreading_run(const Scene &scene, Plugi
 
 // Runs the spreading run to t_end as Simulation::run_until does; with scene.time.sleep, the region
 // where particles may fall asleep follows the spreader (time.sleep_behind behind its trailing edge),
-// moved at every callback (every `every` steps). The case runner and the benchmarks run through here.
+// moved at every callback (every `every` steps), and on a machine takes in the buried powder too
+// (machine.sleep_depth, machine_layout.hpp). The case runner and the benchmarks run through here.
 template <class Real>
 bool run_spreading(engine::Simulation<Real> &sim, const scene::BoundSpreader &spreader, const Scene &spreading,
                    double t_end, const typename engine::Simulation<Real>::StepCallback &callback = {},

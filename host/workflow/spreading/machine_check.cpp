@@ -123,6 +123,8 @@ void check_machine(const Scene &scene, const YAML::Node &user, const std::string
   check_reservoir(scene, dmax, keys, diag);
   if (diag.empty()) check_spreader_path(scene, l, keys, registry, diag);
   warn_unused_powder_keys(keys);
+  if (m.sleep_depth > 0 && !scene.time.sleep)
+    warn_once(fmt::format("{}: scene.machine.sleep_depth does nothing without time.sleep: true", file));
 }
 
 }  // namespace spreadmap

@@ -1,6 +1,7 @@
 #include "workflow/spreading/machine_layout.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <string>
 
 #include "workflow/spreading/powder_sizes.hpp"
@@ -26,6 +27,11 @@ MachineLayout machine_layout(const Scene &scene) {
 double stroke_time(const Scene &scene) {
   const Machine &m = *scene.machine;
   return std::max(1.0, m.dosing) * scene.layers.thickness / m.stroke_speed;
+}
+
+double sleep_below(const Scene &scene) {
+  if (!scene.machine || !(scene.machine->sleep_depth > 0)) return -std::numeric_limits<double>::infinity();
+  return -(scene.layers.thickness + scene.machine->sleep_depth);
 }
 
 namespace {

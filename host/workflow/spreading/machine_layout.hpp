@@ -44,4 +44,9 @@ std::vector<scene::WallSpec> machine_walls(const Scene &scene, bool strokes);
 // How long the longer of the two strokes takes [s].
 double stroke_time(const Scene &scene);
 
+// Below which z the buried powder may sleep during a pass (time.sleep, machine.sleep_depth > 0):
+// sleep_depth below the fresh layer's bottom, the plates' level less one layer, over the well and
+// the reservoir alike. -infinity: no sphere sleeps by depth (no machine, or sleep_depth 0).
+double sleep_below(const Scene &scene);
+
 }  // namespace spreadmap

@@ -92,6 +92,7 @@ void fields(M &m, F &&f) {
   f("lip_length", m.lip_length);
   f("dosing", m.dosing);
   f("stroke_speed", m.stroke_speed);
+  f("sleep_depth", m.sleep_depth);
 }
 
 template <class R, class F>

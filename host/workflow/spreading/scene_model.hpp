@@ -102,6 +102,7 @@ struct Machine {
   double plate_length = 1e-3, well_length = 10e-3, lip_length = 1e-3;            // m
   double dosing = 2;                                                              // piston rise / thickness
   double stroke_speed = 5e-3;                                                     // m/s
+  double sleep_depth = 0;  // m; with time.sleep, spheres this far below the last layer's bottom may sleep
   // Which layer's places the platform and piston take in this scene (layer_scene() sets it; 0: the
   // places they start from). Not a key: it is not in the scene's JSON form.
   int layer = 0;

@@ -90,6 +90,9 @@ constexpr sm_param_v1 machine_params[] = {
     sm::number("dosing", "-", 0.1, 100, 2,
                "the piston's rise per layer over the layer thickness (below 1 the layer cannot fill)"),
     sm::number("stroke_speed", "m/s", 1e-6, 10, 5e-3, "the speed the platform drops and the piston rises at"),
+    sm::number("sleep_depth", "m", 0, 1, 0,
+               "with time.sleep: spheres at rest deeper than this below the fresh layer's bottom (the plates less "
+               "one layer) may sleep; 0 = none by depth"),
 };
 
 constexpr sm_param_v1 roughness_params[] = {
