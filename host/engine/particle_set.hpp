@@ -33,4 +33,23 @@ struct ParticleSet {
   std::vector<double> kinematics_by_id() const;
 };
 
+// The particles i of `set` for which keep(i) holds, in their order, every column kept (an optional
+// column left empty stays empty).
+template <class Keep> ParticleSet select_particles(const ParticleSet &set, Keep keep) {
+  ParticleSet out;
+  auto copy = [&](const auto &from, auto &to, std::size_t i) {
+    if (!from.empty()) to.push_back(from[i]);
+  };
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    if (!keep(i)) continue;
+    for (auto column : {&ParticleSet::x, &ParticleSet::y, &ParticleSet::z, &ParticleSet::vx, &ParticleSet::vy,
+                        &ParticleSet::vz, &ParticleSet::wx, &ParticleSet::wy, &ParticleSet::wz, &ParticleSet::radius,
+                        &ParticleSet::mass})
+      copy(set.*column, out.*column, i);
+    copy(set.id, out.id, i);
+    copy(set.fixed, out.fixed, i);
+  }
+  return out;
+}
+
 }  // namespace spreadmap::engine

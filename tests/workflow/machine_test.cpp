@@ -25,8 +25,8 @@ namespace {
 const fs::path two_layers = fs::path(SPREADMAP_SOURCE_DIR) / "tests/workflow/data/machine/two_layers.yaml";
 
 // The machine of two_layers.yaml [m].
-constexpr double thickness = 400e-6, depth = 2.5e-3, dosing = 2;
-constexpr double reservoir_from = 6e-3, reservoir_to = 10e-3, well_from = 11e-3, well_to = 17e-3, lip_to = 18e-3;
+constexpr double thickness = 400e-6, depth = 2e-3, dosing = 1.5;
+constexpr double reservoir_from = 6e-3, reservoir_to = 9e-3, well_from = 10e-3, well_to = 14e-3, lip_to = 15e-3;
 
 struct Floor {
   double lowest_over_piston = 1, lowest_over_platform = 1;  // the lowest sphere bottom over each [m]
@@ -123,16 +123,16 @@ TEST(Machine, BadMachinesAreRefusedNamingTheKeyAndTheFix) {
     std::string from, to, where, what;
   };
   const std::vector<Bad> bad = {
-      {"reservoir_depth: 2.5 mm", "reservoir_depth: 1.5 mm", "scene.machine.reservoir_depth",
+      {"reservoir_depth: 2 mm", "reservoir_depth: 1.2 mm", "scene.machine.reservoir_depth",
        "cannot supply the layers"},
-      {"well_length: 6 mm", "well_length: 100 um", "scene.machine.well_length",
+      {"well_length: 4 mm", "well_length: 100 um", "scene.machine.well_length",
        "narrower than the largest sphere"},
       {"start: 0 mm", "start: 4 mm", "scene.spreader.start", "over the reservoir"},
-      {"travel: 24 mm", "travel: 18 mm", "scene.spreader.travel", "before the well ends"},
-      {"domain: {length: 24 mm}", "domain: {length: 24 mm, periodic_y: false}", "scene.domain",
+      {"travel: 20 mm", "travel: 15 mm", "scene.spreader.travel", "before the well ends"},
+      {"domain: {length: 17 mm}", "domain: {length: 17 mm, periodic_y: false}", "scene.domain",
        "periodic across"},
-      {"domain: {length: 24 mm}", "domain: {length: 18.2 mm}", "scene.domain.length", "for the overflow"},
-      {"dosing: 2,", "dossing: 2,", "scene.machine.dossing", "did you mean 'dosing'"},
+      {"domain: {length: 17 mm}", "domain: {length: 15.2 mm}", "scene.domain.length", "for the overflow"},
+      {"dosing: 1.5,", "dossing: 1.5,", "scene.machine.dossing", "did you mean 'dosing'"},
   };
   for (const Bad &b : bad) {
     std::string text = original;
@@ -147,7 +147,7 @@ TEST(Machine, BadMachinesAreRefusedNamingTheKeyAndTheFix) {
   }
   // a dosing below 1 is warned, not refused: the layer cannot fill
   std::string low = original;
-  low.replace(low.find("dosing: 2,"), 10, "dosing: 0.8,");
+  low.replace(low.find("dosing: 1.5,"), 12, "dosing: 0.8,");
   std::ofstream(dir / "m.yaml") << low;
   const auto w = t::run({{"validate", (dir / "m.yaml").string()}, {}, {}, {}});
   EXPECT_EQ(w.exit_code, 0) << w.describe();

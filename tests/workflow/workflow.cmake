@@ -72,5 +72,5 @@ spreadmap_workflow_test(guide_examples SOURCES ${CMAKE_CURRENT_LIST_DIR}/guide_e
 # NaN, messages of bad options, a full disk.
 spreadmap_workflow_test(integrity SOURCES ${CMAKE_CURRENT_LIST_DIR}/integrity_test.cpp TIMEOUT 300)
 # A machine's layers (scene.machine): the feed, the dropping platform, the overflow, per-layer resume.
-spreadmap_workflow_test(machine SOURCES ${CMAKE_CURRENT_LIST_DIR}/machine_test.cpp TIMEOUT 300)
+spreadmap_workflow_test(machine SOURCES ${CMAKE_CURRENT_LIST_DIR}/machine_test.cpp TIMEOUT 600)
 target_link_libraries(test_workflow_machine PRIVATE spreadmap_workflow)  # engine::read_vtp

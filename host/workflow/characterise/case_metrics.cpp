@@ -15,6 +15,7 @@
 #include "workflow/cases/case_runner.hpp"
 #include "workflow/spreading/layer_feed.hpp"
 #include "workflow/spreading/machine_layout.hpp"
+#include "workflow/spreading/powder_sizes.hpp"
 
 namespace spreadmap {
 namespace {
@@ -49,9 +50,15 @@ void read_bounds(const YAML::Node &n, const std::string &file, const std::string
 }
 
 // A machine's layer k is measured in its platform's frame: heights above the platform (which dropped
-// k x thickness below the plates), the spreader's lower edge k x thickness + gap above it.
+// k x thickness below the plates), the spreader's lower edge k x thickness + gap above it. Only the
+// powder over the measured region (and a largest diameter beside it) is shown to the metrics: the
+// reservoir's rests on the piston, not on the platform, and is no part of the layer.
 void on_platform(const Scene &scene, int layer, engine::ParticleSet &particles, LayerRequest &rq) {
   const double lift = -machine_layout(scene).platform_top(layer);
+  const double beside = size_distribution(scene.powder).upper();
+  particles = engine::select_particles(particles, [&](std::size_t i) {
+    return particles.x[i] >= rq.region.x0 - beside && particles.x[i] <= rq.region.x1 + beside;
+  });
   for (double &z : particles.z) z += lift;
   rq.gap += lift;
 }

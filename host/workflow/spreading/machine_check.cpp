@@ -72,7 +72,7 @@ void check_reservoir(const Scene &scene, double dmax, const MachineKeys &keys, D
     warn_once(fmt::format("{}: scene.machine.dosing: {:g} is below 1: the piston lifts less powder than a layer "
                           "holds, and the layer cannot fill",
                           keys.file, m.dosing));
-  const double pour_height = (0.64 / pour_packing - 1) * m.reservoir_depth + 2 * dmax;
+  const double pour_height = (reservoir_fill_packing / pour_packing - 1) * m.reservoir_depth + 2 * dmax;
   if (pour_height > scene.domain.height)
     diag.error(keys.at("domain", "height"), "scene.domain.height",
                fmt::format("the reservoir's powder is poured from up to about {:.3g} mm above the plates, higher "

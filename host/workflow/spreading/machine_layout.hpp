@@ -20,6 +20,10 @@
 
 namespace spreadmap {
 
+// The solid poured into the reservoir over its volume: poured powder packs at 0.55-0.64, so this
+// overfills it, and levelling takes off the rest (machine_setup.hpp).
+inline constexpr double reservoir_fill_packing = 0.64;
+
 struct MachineLayout {
   double reservoir_from, reservoir_to, well_from, well_to, overflow_from;  // x [m]
   double thickness, dosing, reservoir_depth;                               // [m], [-], [m]

@@ -17,31 +17,6 @@ namespace spreadmap {
 
 using engine::ParticleSet;
 
-namespace {
-
-// Poured powder packs at 0.55-0.64: pouring this fraction of the reservoir's volume overfills it.
-constexpr double fill_packing = 0.64;
-
-// The spheres of `set` whose centre is at or below z = top, in their order, every column kept.
-ParticleSet below(const ParticleSet &set, double top) {
-  ParticleSet out;
-  auto keep = [&](const auto &from, auto &to, std::size_t i) {
-    if (!from.empty()) to.push_back(from[i]);
-  };
-  for (std::size_t i = 0; i < set.size(); ++i) {
-    if (set.z[i] > top) continue;
-    for (auto column : {&ParticleSet::x, &ParticleSet::y, &ParticleSet::z, &ParticleSet::vx, &ParticleSet::vy,
-                        &ParticleSet::vz, &ParticleSet::wx, &ParticleSet::wy, &ParticleSet::wz, &ParticleSet::radius,
-                        &ParticleSet::mass})
-      keep(set.*column, out.*column, i);
-    keep(set.id, out.id, i);
-    keep(set.fixed, out.fixed, i);
-  }
-  return out;
-}
-
-}  // namespace
-
 template <class Real>
 ParticleSet fill_reservoir(const Scene &scene, PluginRegistry &reg, const std::string &label,
                            const std::filesystem::path &scene_file, const std::function<void(double)> &progress) {
@@ -58,7 +33,7 @@ ParticleSet fill_reservoir(const Scene &scene, PluginRegistry &reg, const std::s
   spec.periodic_y = true;
   spec.sizes = sizes;
   spec.seed = static_cast<std::uint64_t>(scene.powder.seed);
-  spec.solid_volume = fill_packing * m.reservoir_length * width * m.reservoir_depth;
+  spec.solid_volume = reservoir_fill_packing * m.reservoir_length * width * m.reservoir_depth;
   spec.max_top = scene.domain.height - 0.5 * dmax;
   const double clearance = heap_clearance(scene);
   spec.excluded = [&](double x, double y, double z, double r) {
@@ -88,7 +63,7 @@ ParticleSet fill_reservoir(const Scene &scene, PluginRegistry &reg, const std::s
         "not full\n  make the domain taller (domain.height) so that more powder fits above the reservoir while it "
         "is poured",
         scene_file.string(), -top * 1e3));
-  ParticleSet level = below(settled, 0.0);
+  ParticleSet level = engine::select_particles(settled, [&](std::size_t i) { return settled.z[i] <= 0.0; });
   spdlog::info("{}: reservoir levelled at the plates: {} spheres ({} taken off the top)", label, level.size(),
                settled.size() - level.size());
   return level;
