@@ -38,12 +38,12 @@ TEST(MachineLayout, BlocksTileTheFloorWithTheirTopsAtTheLayersPlaces) {
   const double tops[] = {0, -11e-3 + 3 * 2 * 500e-6, 0, -3 * 500e-6, 0};
   const double ends[] = {6e-3, 11e-3, 12e-3, 22e-3, 23e-3};
   for (std::size_t i = 0; i < walls.size(); ++i) {
-    const auto &b = walls[i].block;
+    const auto b = scene::block_of(walls[i]);
     EXPECT_EQ(walls[i].kind, scene::WallKind::block);
     EXPECT_DOUBLE_EQ(b.hi[2], tops[i]) << walls[i].name;
     EXPECT_DOUBLE_EQ(b.hi[0], ends[i]) << walls[i].name;
     if (i > 0) {
-      EXPECT_EQ(b.lo[0], walls[i - 1].block.hi[0]) << "a gap or an overlap before " << walls[i].name;
+      EXPECT_EQ(b.lo[0], scene::block_of(walls[i - 1]).hi[0]) << "a gap or an overlap before " << walls[i].name;
     }
     EXPECT_LE(b.lo[1], 0.0);
     EXPECT_GE(b.hi[1], s.domain.width) << "a block must span the periodic strip";
@@ -57,7 +57,7 @@ TEST(MachineLayout, BlocksTileTheFloorWithTheirTopsAtTheLayersPlaces) {
 TEST(MachineLayout, StrokesMoveThePistonAndThePlatformFromTheLayerBeforeAtStrokeSpeed) {
   const Scene s = machine_scene();  // layer 3
   const auto walls = machine_walls(s, true);
-  const auto &piston = walls[1].block, &platform = walls[3].block;
+  const auto piston = scene::block_of(walls[1]), platform = scene::block_of(walls[3]);
   EXPECT_DOUBLE_EQ(piston.hi[2], -11e-3 + 2 * 2 * 500e-6);  // layer 2's place
   EXPECT_DOUBLE_EQ(platform.hi[2], -2 * 500e-6);
   EXPECT_DOUBLE_EQ(piston.velocity[2], 20e-3);
@@ -71,7 +71,7 @@ TEST(MachineLayout, StrokesMoveThePistonAndThePlatformFromTheLayerBeforeAtStroke
   EXPECT_NEAR(pose.reference[2] + (piston.hi[2] - piston.lo[2]), -11e-3 + 3 * 2 * 500e-6, 1e-15);
   platform.pose(1.0, &pose);
   EXPECT_NEAR(pose.reference[2] + (platform.hi[2] - platform.lo[2]), -3 * 500e-6, 1e-15);
-  for (std::size_t i : {0u, 2u, 4u}) EXPECT_EQ(walls[i].block.max_surface_speed(), 0.0) << "plates never move";
+  for (std::size_t i : {0u, 2u, 4u}) EXPECT_EQ(scene::block_of(walls[i]).max_surface_speed(), 0.0) << "plates never move";
 }
 
 TEST(MachineLayout, TheBuriedPowderSleepsBelowTheFreshLayerBySleepDepth) {

@@ -120,7 +120,7 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
       continue;
     }
     if (w.kind == WallKind::block) {
-      const BlockWall &geometry = run->blocks.emplace_back(w.block);
+      const BlockWall &geometry = run->blocks.emplace_back(block_of(w));
       sim.add_geometry({&block_wall_ops(), &geometry, bound(wall_law), w.name, 0.0});
       continue;
     }

@@ -380,15 +380,6 @@ void read_box_wall(const WallKeys &keys, WallSpec &spec) {
                      fmt::format("hi.{} is not above lo.{}: the {} is empty", "xyz"[a], "xyz"[a], keys.type),
                      "make hi greater than lo along every axis");
   }
-  if (spec.kind != WallKind::block) return;
-  BlockWall &b = spec.block;
-  for (int a = 0; a < 3; ++a) {
-    b.lo[a] = spec.lo[a];
-    b.hi[a] = spec.hi[a];
-    b.velocity[a] = spec.velocity[a];
-  }
-  b.start = spec.start;
-  b.stop = spec.stop;
 }
 
 // `v`: the wall's host keys as validated (radius, height, inside and omega with their defaults).

@@ -33,16 +33,21 @@ struct WallSpec {
   std::string key_path;  // "walls[2]": where messages point
   Location where;
   Vec point{0, 0, 0}, normal{0, 0, 1};  // plane: a point on it and the normal into the particle side
-  Vec lo{0, 0, 0}, hi{0, 0, 0};         // box: particles live inside
+  Vec lo{0, 0, 0}, hi{0, 0, 0};         // box: particles live inside; block: the solid (at time 0)
   bool open_top = false;                // box: no lid (the plane at hi.z is left out)
   CylinderWall cylinder{};              // cylinder
-  BlockWall block{};                    // block
   SpreaderWall spreader;                // spreader
-  Vec velocity{0, 0, 0};                // planes and boxes translate; a cylinder's or block's motion is in it
+  Vec velocity{0, 0, 0};                // planes, boxes and blocks translate; a cylinder's motion is in it
   double start = 0;                     // the motion starts at this time [s]
   double stop = std::numeric_limits<double>::infinity();  // and stops at this one [s]
   nlohmann::json law;                   // the contact law's parameters for this wall (SI)
 };
+
+// The block a `block` wall describes: its corners at time 0, moving with its velocity from start to stop.
+inline BlockWall block_of(const WallSpec &w) {
+  return {{w.lo[0], w.lo[1], w.lo[2]}, {w.hi[0], w.hi[1], w.hi[2]}, {w.velocity[0], w.velocity[1], w.velocity[2]},
+          w.start, w.stop};
+}
 
 // Generated particles: random non-overlapping spheres in a box (the heap generator), clear of every
 // wall, which then fall or settle as the scene makes them (pouring).

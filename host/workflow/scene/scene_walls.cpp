@@ -39,7 +39,7 @@ double wall_overlap(const WallSpec &w, const Vec &c, double r) {
   }
   if (w.kind == WallKind::block) {
     WallHit<double> hit{0, {0, 0, 1}, {0, 0, 0}};
-    return w.block(Vec3<double>{c[0], c[1], c[2]}, r, 0.0, hit) ? hit.overlap : 0;
+    return block_of(w)(Vec3<double>{c[0], c[1], c[2]}, r, 0.0, hit) ? hit.overlap : 0;
   }
   double deepest = -std::numeric_limits<double>::infinity();
   for (const auto &p : planes_of(w)) {

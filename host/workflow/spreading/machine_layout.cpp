@@ -46,18 +46,15 @@ scene::WallSpec block(const std::string &name, double x0, double x1, double bott
   w.lo = {x0, -width, bottom - 1e-3};
   w.hi = {x1, 2 * width, top};
   w.law = law;
-  w.block = scene::BlockWall{{w.lo[0], w.lo[1], w.lo[2]}, {w.hi[0], w.hi[1], w.hi[2]}, {0, 0, 0}, 0, 0};
   return w;
 }
 
 // The block moved by `rise` along z at `speed` from time 0 (at rest after).
 scene::WallSpec moving(scene::WallSpec w, double rise, double speed) {
   if (rise == 0) return w;
-  w.block.velocity[2] = rise > 0 ? speed : -speed;
-  w.block.start = 0;
-  w.block.stop = std::abs(rise) / speed;
-  w.velocity = {0, 0, w.block.velocity[2]};
-  w.stop = w.block.stop;
+  w.velocity = {0, 0, rise > 0 ? speed : -speed};
+  w.start = 0;
+  w.stop = std::abs(rise) / speed;
   return w;
 }
 
