@@ -35,6 +35,7 @@
 #include "analysis/summary.hpp"
 #include "core/registry.hpp"
 #include "core/schema.hpp"
+#include "engine/plugin_law.hpp"
 #include "workflow/stage_table.hpp"
 #include "workflow/spreading/case_setup.hpp"
 #include "workflow/characterise/layer_eval.hpp"
@@ -108,7 +109,7 @@ Outcome spread(const sm::Scene &scene, sm::PluginRegistry &registry, const sm::e
   if (v.force_rotation) sim.force_rotation(true);
   if (v.idle_walls) {
     const sm::PluginInstance &substrate = run->built->wall_laws.front();  // the substrate's law
-    const sm::engine::ContactLaw law{substrate.ops<sm::sm_contact_ops_v1>(), substrate.get()};
+    const sm::engine::ContactLaw law = sm::engine::bound_law(substrate);
     // 1 mm outside the domain's top and back faces: nothing inside can reach them
     const double h = scene.domain.height;
     sim.add_plane_wall({{0, 0, h + 1e-3}, {0, 0, -1}, {0, 0, 0}, law, true, "ceiling"});

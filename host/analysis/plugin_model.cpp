@@ -1,6 +1,9 @@
 #include "plugin_model.hpp"
 
 #include <cstring>
+#include <string>
+
+#include "core/plugin_abi.hpp"
 #include <stdexcept>
 
 namespace sm = spreadmap;
@@ -12,10 +15,8 @@ using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 
 const sm_surrogate_ops_v1 *surrogate_ops(const sm_plugin_v1 *p) {
   if (!p) throw std::invalid_argument("no surrogate plugin given");
-  if (p->abi != SPREADMAP_PLUGIN_ABI)
-    throw std::runtime_error(std::string("surrogate/") + p->name + " uses plugin ABI " + std::to_string(p->abi) +
-                             ", this host needs ABI " + std::to_string(SPREADMAP_PLUGIN_ABI) +
-                             ": rebuild it with this SDK");
+  if (const std::string refusal = abi_refusal(p->abi); !refusal.empty())
+    throw std::runtime_error(std::string("surrogate/") + p->name + " " + refusal);
   if (std::strcmp(p->kind, "surrogate") != 0)
     throw std::invalid_argument(std::string(p->kind) + "/" + p->name + " is not a surrogate plugin");
   if (!p->ops) throw std::runtime_error(std::string("surrogate/") + p->name + " has no ops table");

@@ -8,6 +8,7 @@
 
 #include "cli/command_table.hpp"
 #include "core/error.hpp"
+#include "core/plugin_abi.hpp"
 #include "core/stop.hpp"
 #include "core/suggest.hpp"
 
@@ -26,7 +27,7 @@ int run_command_line(int argc, char **argv) {
   const std::string name = argv[1];
   try {
     if (name == "--version" || name == "version") {
-      std::cout << "spreadmap " << SPREADMAP_VERSION << " (plugin ABI " << SPREADMAP_PLUGIN_ABI << ")\n";
+      std::cout << "spreadmap " << SPREADMAP_VERSION << " (plugin ABI " << host_abi_text() << ")\n";
       return 0;
     }
     if (name == "--help" || name == "-h" || name == "help") {

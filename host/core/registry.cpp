@@ -1,4 +1,5 @@
 #include "core/registry.hpp"
+#include "core/plugin_abi.hpp"
 
 #include <dlfcn.h>
 #include <link.h>
@@ -115,9 +116,8 @@ const LoadedPlugin &PluginRegistry::load_file(const fs::path &file, const std::s
   const auto entry = lib->get<const sm_plugin_v1 *()>("spreadmap_plugin_v1");
   const sm_plugin_v1 *d = entry();
   if (!d) throw PluginError("error: " + file.string() + ": its entry point returned no descriptor");
-  if (d->abi != SPREADMAP_PLUGIN_ABI)
-    throw PluginError("error: " + file.string() + " uses plugin ABI " + std::to_string(d->abi) +
-                      ", this host needs ABI " + std::to_string(SPREADMAP_PLUGIN_ABI) + ": rebuild it with this SDK");
+  if (const std::string refusal = abi_refusal(d->abi); !refusal.empty())
+    throw PluginError("error: " + file.string() + " " + refusal);
   const std::string stem = file.stem().string();
   if (!expected_kind.empty() && expected_kind != d->kind)
     throw PluginError("error: " + file.string() + " is a " + d->kind + " plugin, found where " + expected_kind +

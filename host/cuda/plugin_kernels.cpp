@@ -47,10 +47,6 @@ ContactKernels contact_kernels(const LoadedPlugin &plugin) {
   const auto entry = reinterpret_cast<sm_contact_cuda_entry_v1>(entry_point(plugin, SPREADMAP_CONTACT_CUDA_ENTRY));
   const sm_contact_cuda_ops_v1 *ops = entry();
   check_abi(plugin, ops, ops ? ops->abi : 0);
-  const auto *cpu = static_cast<const sm_contact_ops_v1 *>(plugin.descriptor->ops);
-  if (cpu && cpu->history != ops->history)
-    throw PluginError("error: " + plugin.id() + ": its CUDA kernels keep " + std::to_string(ops->history) +
-                      " history values per contact, its CPU loops " + std::to_string(cpu->history) + ": rebuild it");
   return {plugin.id(), ops};
 }
 

@@ -248,7 +248,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       index_[k++].upload(c.data(), c.size());
     });
     auto &list = state.list;
-    history_ = state.pair_law.ops->history;
+    history_ = engine::law_history(state.pair_law);
     if (state.list_valid && list.start.size() == std::size_t(n_) + 1) {
       start_.upload(list.start.data(), list.start.size());
       nbr_.upload(list.nbr.data(), list.nbr.size());

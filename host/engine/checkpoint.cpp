@@ -26,7 +26,7 @@ template <class Real> void Simulation<Real>::save_checkpoint(const std::filesyst
   w.value<std::uint64_t>(state_.particles.size());
   w.value<std::uint32_t>(static_cast<std::uint32_t>(state_.planes.size()));
   w.value<std::uint32_t>(static_cast<std::uint32_t>(state_.geometries.size()));
-  w.value<std::uint32_t>(state_.pair_law.ops->history);
+  w.value<std::uint32_t>(law_history(state_.pair_law));
   for (const auto &pl : state_.planes) w.value<std::uint32_t>(pl.slot.history);
   for (const auto &ge : state_.geometries) w.value<std::uint32_t>(ge.slot.history);
 
@@ -104,7 +104,7 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
                       "scene; resume with the same contact laws",
                       path.string(), what, h, expected));
   };
-  check_history(state_.pair_law.ops->history, "the particle-particle law");
+  check_history(law_history(state_.pair_law), "the particle-particle law");
   for (const auto &pl : state_.planes) check_history(pl.slot.history, "plane wall '" + pl.wall.name + "'");
   for (const auto &ge : state_.geometries) check_history(ge.slot.history, "geometry '" + ge.geometry.name + "'");
 
@@ -139,7 +139,7 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
   r.array(state_.list.nbr);
   r.array(state_.list.hist);
   if (state_.list.start.size() != n + 1 || state_.list.start.back() != state_.list.nbr.size() ||
-      state_.list.hist.size() != state_.list.nbr.size() * state_.pair_law.ops->history)
+      state_.list.hist.size() != state_.list.nbr.size() * law_history(state_.pair_law))
     r.fail("an inconsistent neighbour list");
   // every index is checked before a loop trusts it: a neighbour beyond the particles is a crash
   for (std::size_t i = 0; i < n; ++i)
@@ -148,7 +148,7 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
     if (j >= n) r.fail(fmt::format("a neighbour index {} beyond the {} particles", j, n));
   for (const auto j : p.list_index)
     if (j != no_index && j >= n) r.fail(fmt::format("a list index {} beyond the {} particles", j, n));
-  state_.list.restore_mirror(state_.settings.pairs_once, state_.pair_law.ops->history);
+  state_.list.restore_mirror(state_.settings.pairs_once, law_history(state_.pair_law));
   fixed_ = std::size_t(std::count(p.inv_m.begin(), p.inv_m.end(), Real(0)));
   asleep_ = std::size_t(std::count(p.mobile.begin(), p.mobile.end(), Real(0))) - fixed_;
   if (state_.settings.sleep) find_border();

@@ -1,5 +1,7 @@
 #include <engine/plugin_law.hpp>
 
+#include <core/plugin_abi.hpp>
+
 #include <algorithm>
 #include <spreadmap/contact.hpp>
 
@@ -13,7 +15,11 @@ namespace fs = std::filesystem;
 PluginLaw::PluginLaw(std::shared_ptr<PluginRegistry> registry, PluginInstance instance, nlohmann::json params)
     : registry_(std::move(registry)), instance_(std::move(instance)), params_(std::move(params)) {}
 
-ContactLaw PluginLaw::law() const { return {instance_.ops<sm_contact_ops_v1>(), instance_.get()}; }
+ContactLaw bound_law(const PluginInstance &instance) {
+  return {instance.ops<sm_contact_ops_v1>(), instance.get(), abi_minor(*instance.plugin()->descriptor)};
+}
+
+ContactLaw PluginLaw::law() const { return bound_law(instance_); }
 
 std::string PluginLaw::id() const { return instance_.plugin()->id(); }
 

@@ -46,6 +46,9 @@ class PluginLaw {
   nlohmann::json params_;
 };
 
+// The law the engine takes from a bound contact-plugin instance (its ABI minor version included).
+ContactLaw bound_law(const PluginInstance &instance);
+
 // The default search folders (above). `package_dir` empty: none from a package.
 std::vector<std::filesystem::path> plugin_search_path(
     const std::filesystem::path &package_dir = SPREADMAP_PACKAGE_PLUGIN_DIR);

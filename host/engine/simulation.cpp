@@ -47,7 +47,7 @@ Simulation<Real>::Simulation(const Domain &domain, ContactLaw pair_law, Settings
       throw SetupError(
           "settings: sleep needs a particle-particle law that attracts touching particles only (a sleeping "
           "sphere would be pulled across a gap without moving); turn sleep off or set hamaker_constant: 0");
-    if (pair_law.ops->history > 0)
+    if (law_history(pair_law) > 0)
       throw SetupError(
           "settings: sleep needs a particle-particle law without history (the tangential springs of two "
           "sleeping spheres would be lost); turn sleep off or use a law without history");
@@ -187,7 +187,7 @@ template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wal
                     wall.name));
   PlaneSlot<Real> s;
   s.wall = std::move(wall);
-  s.slot.history = s.wall.law.ops->history;
+  s.slot.history = law_history(s.wall.law);
   s.slot.resize(state_.particles.size());
   state_.planes.push_back(std::move(s));
   step_resolved_ = state_.forces_valid = false;
@@ -201,7 +201,7 @@ template <class Real> std::size_t Simulation<Real>::add_geometry(GeometryWall ge
     throw SetupError(fmt::format("geometry '{}': no contacts function in its ops table", geometry.name));
   GeometrySlot<Real> s;
   s.geometry = std::move(geometry);
-  s.slot.history = s.geometry.law.ops->history;
+  s.slot.history = law_history(s.geometry.law);
   s.slot.resize(state_.particles.size());
   state_.geometries.push_back(std::move(s));
   step_resolved_ = state_.forces_valid = false;

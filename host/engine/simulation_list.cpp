@@ -108,7 +108,7 @@ template <class Real> void Simulation<Real>::rebuild_list() {
       if (s.history) gather(s.hist, perm_, scratch_real_, s.history);
     });
   }
-  state_.list.build(p, grid, cell_start_, cell_sorted_, state_.domain, Real(list_skin), state_.pair_law.ops->history,
+  state_.list.build(p, grid, cell_start_, cell_sorted_, state_.domain, Real(list_skin), law_history(state_.pair_law),
                     state_.settings.pairs_once, state_.settings.sleep && asleep_ > 0 ? p.mobile.data() : nullptr);
   if (state_.settings.sleep) find_border();
   asleep_at_build_ = asleep_;

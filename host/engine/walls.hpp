@@ -7,17 +7,27 @@
 #include <spreadmap/geometry.hpp>
 
 #include <array>
+#include <cstdint>
 #include <string>
 
 namespace spreadmap::engine {
 
+// abi_minor: the plugin ABI minor version its ops table was built for, which says which fields it has
+// (a table from this program's own SDK headers has them all).
 struct ContactLaw {
   const sm_contact_ops_v1 *ops = nullptr;
   const void *self = nullptr;
+  std::uint32_t abi_minor = SPREADMAP_PLUGIN_ABI_MINOR;
 };
 
 // How far across a gap a bound law attracts [m]; 0: touching contacts only.
 inline double law_range(const ContactLaw &law) { return law.ops && law.ops->range ? law.ops->range(law.self) : 0; }
+
+// History values per contact of this bound instance (ABI 10.1; before it, the table's one count).
+inline std::uint32_t law_history(const ContactLaw &law) {
+  if (!law.ops) return 0;
+  return law.abi_minor >= 1 && law.ops->history_of ? law.ops->history_of(law.self) : law.ops->history;
+}
 
 // An infinite plane. Particles on the side `normal` points to touch it when closer than their
 // radius. The point moves with `velocity` (a tangential velocity is a conveyor: the plane stays put

@@ -22,6 +22,7 @@ endfunction()
 spreadmap_fixture_plugin(good fixture_law)
 spreadmap_fixture_plugin(shadow fixture_law DEFINES FIXTURE_VERSION="2.0.0")
 spreadmap_fixture_plugin(abi_mismatch abi_mismatch DEFINES FIXTURE_ABI=99u)
+spreadmap_fixture_plugin(newer_minor newer_minor DEFINES FIXTURE_ABI=0xA0063u)  # ABI 10.99
 spreadmap_fixture_plugin(stale_hooke_slider hooke_slider DEFINES FIXTURE_ABI=99u)  # shadows the real one
 spreadmap_fixture_plugin(no_entry no_entry DEFINES FIXTURE_NO_ENTRY)
 spreadmap_fixture_plugin(entry_variable entry_variable DEFINES FIXTURE_ENTRY_VARIABLE)
@@ -30,6 +31,13 @@ spreadmap_fixture_plugin(kind_mismatch kind_mismatch DEFINES FIXTURE_KIND="sprea
 spreadmap_fixture_plugin(name_mismatch name_mismatch REGISTERS other_name)
 spreadmap_fixture_plugin(refusing refusing DEFINES FIXTURE_FACTORY=1)
 spreadmap_fixture_plugin(throwing throwing DEFINES FIXTURE_FACTORY=2)
+# A real law built for ABI 10.0, whose ops table ends before 10.1's history_of: this host loads it.
+add_library(fixture_abi_10_0 MODULE ${PROJECT_SOURCE_DIR}/plugins/contact/hooke_history/hooke_history.cpp)
+target_link_libraries(fixture_abi_10_0 PRIVATE spreadmap_sdk)
+target_compile_definitions(fixture_abi_10_0 PRIVATE SPREADMAP_TARGET_ABI_MINOR=0)
+set_target_properties(fixture_abi_10_0 PROPERTIES PREFIX "" OUTPUT_NAME hooke_history CXX_VISIBILITY_PRESET hidden
+  LIBRARY_OUTPUT_DIRECTORY ${SPREADMAP_FIXTURE_DIR}/abi_10_0/contact)
+set_property(GLOBAL APPEND PROPERTY SPREADMAP_FIXTURE_TARGETS fixture_abi_10_0)
 get_property(SPREADMAP_FIXTURE_TARGETS GLOBAL PROPERTY SPREADMAP_FIXTURE_TARGETS)
 
 spreadmap_test(unit core

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.hpp"
+#include "core/plugin_abi.hpp"
 #include "core/registry.hpp"
 
 namespace sm = spreadmap;
@@ -91,11 +92,28 @@ TEST(CoreRegistry, AGoodPluginLoadsByKindAndName) {
   EXPECT_EQ(&reg.get("contact", "fixture_law"), &p);  // loaded once
 }
 
+// A plugin of a newer minor version may expect calls this host does not make: refused, naming both.
+TEST(CoreRegistry, ANewerMinorAbiIsRefusedNamingBothVersionsAndTheFix) {
+  const std::string e = get_error({fixtures / "newer_minor"}, "contact", "newer_minor");
+  EXPECT_TRUE(contains(e, library("newer_minor", "newer_minor").string())) << e;
+  EXPECT_TRUE(contains(e, "uses plugin ABI 10.99, newer than this host's " + sm::host_abi_text())) << e;
+  EXPECT_TRUE(contains(e, "-DSPREADMAP_TARGET_ABI_MINOR=" + std::to_string(SPREADMAP_PLUGIN_ABI_MINOR))) << e;
+}
+
+TEST(CoreRegistry, AbiVersionsReadAsMajorDotMinorAndTheOldCountsAsTheyWere) {
+  EXPECT_EQ(sm::abi_text(SPREADMAP_ABI_VERSION(10u, 1u)), "10.1");
+  EXPECT_EQ(sm::abi_text(9u), "9");
+  EXPECT_EQ(sm::abi_refusal(SPREADMAP_ABI_VERSION(10u, 0u)), "") << "an older minor loads";
+  EXPECT_EQ(sm::abi_refusal(SPREADMAP_ABI_VERSION(10u, SPREADMAP_PLUGIN_ABI_MINOR)), "");
+  EXPECT_NE(sm::abi_refusal(SPREADMAP_ABI_VERSION(11u, 0u)), "") << "another major does not";
+  EXPECT_NE(sm::abi_refusal(9u), "");
+}
+
 TEST(CoreRegistry, AbiMismatchNamesTheFileAndBothVersions) {
   const std::string e = get_error({fixtures / "abi_mismatch"}, "contact", "abi_mismatch");
   EXPECT_TRUE(contains(e, library("abi_mismatch", "abi_mismatch").string())) << e;
   EXPECT_TRUE(contains(e, "uses plugin ABI 99")) << e;
-  EXPECT_TRUE(contains(e, "this host needs ABI " + std::to_string(SPREADMAP_PLUGIN_ABI))) << e;
+  EXPECT_TRUE(contains(e, "this host loads ABI 10.0 to " + sm::host_abi_text())) << e;
   EXPECT_TRUE(contains(e, "rebuild it")) << e;
 }
 

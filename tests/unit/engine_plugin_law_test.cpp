@@ -2,10 +2,13 @@
 // are checked as in a workflow file (units, defaults, every bad value named with its key and fix),
 // and the default search finds this build's plugins through the spreadmap_engine target.
 #include <engine/plugin_law.hpp>
+#include <engine/simulation.hpp>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace sm = spreadmap;
 using sm::engine::load_contact_law;
@@ -38,7 +41,8 @@ TEST(PluginLaw, BindsWithUnitsAndDefaults) {
   EXPECT_EQ(law.params().at("clamp_normal").get<bool>(), false);
   ASSERT_NE(law.law().ops, nullptr);
   ASSERT_NE(law.law().self, nullptr);
-  EXPECT_EQ(law.law().ops->history, 0u);
+  EXPECT_EQ(sm::engine::law_history(law.law()), 0u) << "no rolling spring: no history";
+  EXPECT_EQ(law.law().ops->history, 3u) << "the most an instance keeps: the rolling spring's";
 
   // The view stays valid when the owner moves; a null parameter object means all defaults.
   auto moved = load_contact_law("hooke_slider", nullptr);
@@ -73,4 +77,75 @@ TEST(PluginLaw, RefusesAnUnknownPluginNamingTheFoldersSearched) {
   const std::filesystem::path empty = std::filesystem::path(SPREADMAP_BINARY_DIR) / "no_plugins_here";
   const auto elsewhere = error_of<sm::PluginError>([&] { load_contact_law("hooke_slider", {}, {empty}); });
   EXPECT_TRUE(contains(elsewhere, "available: none (searched " + (empty / "contact").string() + ")")) << elsewhere;
+}
+
+namespace {
+
+// Three spheres in a row along x on a floor plane, barely touching, stepped `steps` times (one thread:
+// below the engine's parallel size); their positions, velocities and spins, in that order, at the end.
+std::vector<double> row_on_floor(const sm::engine::ContactLaw &law, std::uint64_t steps,
+                            std::array<double, 3> gravity = {0, 0, -9.81}) {
+  sm::engine::Settings s;
+  s.gravity = gravity;
+  sm::engine::Simulation<double> sim({{0, 0, 0}, {0.002, 0.002, 0.002}, {true, true, false}}, law, s);
+  sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, law});
+  sm::engine::ParticleSet p;
+  const double r = 125e-6;
+  for (int k = 0; k < 3; ++k) {
+    p.x.push_back(0.001 + 1.999 * r * k);
+    p.y.push_back(0.001);
+    p.z.push_back(r);
+    p.radius.push_back(r);
+  }
+  sim.add_particles(p, 4430);
+  sim.run_steps(steps);
+  std::vector<double> out;
+  const auto &a = sim.arrays();
+  for (const auto *column : {&a.x, &a.y, &a.z, &a.vx, &a.vy, &a.vz, &a.wx, &a.wy, &a.wz})
+    out.insert(out.end(), column->begin(), column->begin() + 3);
+  return out;
+}
+
+}  // namespace
+
+// A plugin built for ABI 10.0 (tests/unit/core.cmake) has no history_of in its ops table: this 10.1 host
+// reads the table's own count and steps the law bit for bit as the plugin of this build does.
+TEST(PluginLaw, APluginOfTheOlderMinorAbiLoadsAndStepsBitForBit) {
+  const nlohmann::json params = {{"friction", 0.5}, {"rolling_friction", 0.05}};
+  const std::filesystem::path older = std::filesystem::path(SPREADMAP_FIXTURE_DIR) / "abi_10_0";
+  const auto old_law = load_contact_law("hooke_history", params, {older});
+  const auto new_law = load_contact_law("hooke_history", params);
+  ASSERT_EQ(old_law.file().parent_path(), older / "contact");
+  EXPECT_EQ(old_law.law().abi_minor, 0u);
+  EXPECT_EQ(new_law.law().abi_minor, SPREADMAP_PLUGIN_ABI_MINOR);
+  EXPECT_EQ(sm::engine::law_history(old_law.law()), 3u);
+  EXPECT_EQ(sm::engine::law_history(new_law.law()), 3u);
+  const std::array<double, 3> slope{2, 0, -9.81};  // steeper than mu_r: they roll, sliding friction and rolling torque act
+  EXPECT_EQ(row_on_floor(old_law.law(), 3000, slope), row_on_floor(new_law.law(), 3000, slope));
+
+  // what 10.1 added is refused by the older build, naming the version it needs
+  const auto refused = error_of<sm::PluginError>([&] {
+    load_contact_law("hooke_history", {{"rolling_friction", 0.1}, {"rolling_model", "epsd"}}, {older});
+  });
+  EXPECT_TRUE(contains(refused, "rolling_model epsd needs plugin ABI 10.1")) << refused;
+}
+
+// Through the engine (wall and pair records with the spring's history): on a slope flatter than mu_r the
+// rolling spring brings the spheres to rest, where the constant torque lets them creep at its
+// regularisation's speed (5 g sin(theta) dt, tests/verification/contact_friction_test.cpp).
+TEST(PluginLaw, TheRollingSpringHoldsSpheresOnASlopeWhereTheConstantTorqueCreeps) {
+  const double mu_r = 0.1, theta = std::atan(0.5 * mu_r), g = 9.81;
+  const std::array<double, 3> tilted{g * std::sin(theta), 0, -g * std::cos(theta)};
+  const nlohmann::json constant = {{"friction", 0.5}, {"rolling_friction", mu_r}, {"restitution", 0.3}};
+  nlohmann::json spring = constant;
+  spring["rolling_model"] = "epsd";
+  const auto epsd = load_contact_law("hooke_history", spring);
+  EXPECT_EQ(sm::engine::law_history(epsd.law()), 6u);
+  const std::uint64_t steps = 40000;
+  const auto held = row_on_floor(epsd.law(), steps, tilted);
+  const auto creeping = row_on_floor(load_contact_law("hooke_history", constant).law(), steps, tilted);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LT(std::abs(held[9 + k]), 1e-9) << "sphere " << k << " at rest: v_x " << held[9 + k];
+    EXPECT_GT(creeping[9 + k], 1e-7) << "sphere " << k << " creeps: v_x " << creeping[9 + k];
+  }
 }

@@ -9,6 +9,7 @@
 #include <spreadmap/params.hpp>
 
 #include <nlohmann/json.hpp>
+#include <algorithm>
 #include <vector>
 
 #ifdef _OPENMP
@@ -78,8 +79,9 @@ template <class Law, class Real = double> class Integrator {
         if (j != i) nbr_.push_back(j);
       start_.push_back(static_cast<std::uint32_t>(nbr_.size()));
     }
-    pair_hist_.assign(nbr_.size() * (Law::history ? Law::history : 1), 0.0);
-    wall_hist_.assign(walls_.size(), std::vector<Real>(n * (Law::history ? Law::history : 1), Real(0)));
+    const std::size_t history = std::max(history_of(law_), 1);
+    pair_hist_.assign(nbr_.size() * history, 0.0);
+    wall_hist_.assign(walls_.size(), std::vector<Real>(n * history, Real(0)));
     for (auto *a : {&w_overlap_, &w_nx_, &w_ny_, &w_nz_, &w_vx_, &w_vy_, &w_vz_}) a->assign(n, 0.0);
     compute_forces();
   }
@@ -90,6 +92,12 @@ template <class Law, class Real = double> class Integrator {
     t_ += dt_;
     compute_forces();
     kick();
+  }
+
+  // A constant external torque on sphere i [N m], added at every kick from now on.
+  void set_external_torque(std::size_t i, V3 t) {
+    external_torque_.resize(s_.size(), V3{0, 0, 0});
+    external_torque_[i] = t;
   }
 
   // A constant external force on sphere i [N] (a pull or a load), added at every kick from now on.
@@ -117,6 +125,7 @@ template <class Law, class Real = double> class Integrator {
       s.v += (force(i) * (1 / s.m) + g_) * (0.5 * dt_);
       if (!external_.empty()) s.v += external_[i] * (0.5 * dt_ / s.m);
       s.w += torque(i) * (0.5 * dt_ / s.inertia());
+      if (!external_torque_.empty()) s.w += external_torque_[i] * (0.5 * dt_ / s.inertia());
     }
   }
   void compute_forces() {
@@ -160,7 +169,7 @@ template <class Law, class Real = double> class Integrator {
                       Real(dt_),
                       Real(t_)};
     PairList<Real> list{start_.data(), nbr_.data(), pair_hist_.data()};
-    pair_loop(law_, p, list);
+    in_loop_form(law_, [&](const auto &form) { pair_loop(form, p, list); });
     for (std::size_t k = 0; k < walls_.size(); ++k) {
       for (std::size_t i = 0; i < n; ++i) {
         w_overlap_[i] = Real(wall_overlap(i, k));
@@ -178,7 +187,7 @@ template <class Law, class Real = double> class Integrator {
                            w_vz_.data(),
                            wall_hist_[k].data()};
       w.gap = Real(1);  // the records hold every gap exactly: a law reaching across one sees it up to its range
-      wall_loop(law_, p, w);
+      in_loop_form(law_, [&](const auto &form) { wall_loop(form, p, w); });
     }
   }
 
@@ -187,7 +196,7 @@ template <class Law, class Real = double> class Integrator {
   std::vector<Plane> walls_;
   double dt_, t_ = 0;
   V3 g_;
-  std::vector<V3> external_;  // empty: none
+  std::vector<V3> external_, external_torque_;  // empty: none
   std::vector<Real> x_, y_, z_, vx_, vy_, vz_, wx_, wy_, wz_, r_, m_, fx_, fy_, fz_, tx_, ty_, tz_;
   std::vector<std::uint32_t> start_, nbr_;
   std::vector<Real> pair_hist_;

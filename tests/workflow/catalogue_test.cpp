@@ -9,7 +9,7 @@
 //   # expect-text: ...                further text of the message (any number of lines)
 //   # expect-errors: 1                exact number of "error:" messages (e.g. reported once)
 //   # with-env: NAME=VALUE            environment of the run (@FIXTURES@: the fixture plugins;
-//                                     @ABI@ anywhere: this SDK's plugin ABI number)
+//                                     @ABI@ anywhere: the newest plugin ABI this host loads, "10.1")
 //   # with-command: run @FILE@ --out @OUT@   instead of `validate @FILE@`
 #include <gtest/gtest.h>
 #include <spreadmap/abi.h>
@@ -46,7 +46,8 @@ std::string substitute(std::string s, const std::string &from, const std::string
 }
 
 std::string fixtures(std::string s) {
-  s = substitute(std::move(s), "@ABI@", std::to_string(SPREADMAP_PLUGIN_ABI));
+  s = substitute(std::move(s), "@ABI@",
+                 std::to_string(SPREADMAP_PLUGIN_ABI_MAJOR) + "." + std::to_string(SPREADMAP_PLUGIN_ABI_MINOR));
   return substitute(std::move(s), "@FIXTURES@", SPREADMAP_FIXTURE_DIR);
 }
 

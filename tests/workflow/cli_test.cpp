@@ -41,7 +41,8 @@ TEST(Cli, VersionNamesTheProgramAndThePluginAbi) {
   const auto r = cli({"--version"});
   ASSERT_EQ(r.exit_code, 0) << r.describe();
   EXPECT_TRUE(std::regex_match(r.out, std::regex("spreadmap [0-9]+\\.[0-9]+\\.[0-9]+ \\(plugin ABI " +
-                                                 std::to_string(SPREADMAP_PLUGIN_ABI) + "\\)\n")))
+                                                 std::to_string(SPREADMAP_PLUGIN_ABI_MAJOR) + "\\." +
+                                                 std::to_string(SPREADMAP_PLUGIN_ABI_MINOR) + "\\)\n")))
       << r.out;
 }
 
@@ -149,7 +150,9 @@ TEST(Cli, EveryShippedWorkflowValidates) {
 TEST(CliPluginFaults, AbiMismatchNamesTheFileAndBothVersions) {
   const auto r = cli({"plugins", "abi_mismatch"}, {{"SPREADMAP_PLUGIN_PATH", fixture("abi_mismatch")}});
   expect_plugin_error(r, fixture("abi_mismatch") + "/contact/abi_mismatch.so",
-                      "uses plugin ABI 99, this host needs ABI " + std::to_string(SPREADMAP_PLUGIN_ABI));
+                      "uses plugin ABI 99, this host loads ABI " + std::to_string(SPREADMAP_PLUGIN_ABI_MAJOR) +
+                          ".0 to " + std::to_string(SPREADMAP_PLUGIN_ABI_MAJOR) + "." +
+                          std::to_string(SPREADMAP_PLUGIN_ABI_MINOR));
 }
 
 TEST(CliPluginFaults, LibraryWithoutEntryPoint) {

@@ -1,13 +1,25 @@
 /* spreadmap plugin ABI (its versions: docs/plugins.md, "The plugin ABI"). Plain C:
  * nothing C++ crosses a shared-library boundary. Every plugin exports exactly one symbol, `spreadmap_plugin_v1`,
- * returning a pointer to a static descriptor whose first field is the ABI number; the host checks it before touching
- * anything else. Bump SPREADMAP_PLUGIN_ABI on any change of layout in this file or in a kind's ops table. */
+ * returning a pointer to a static descriptor whose first field is the ABI version; the host checks it before
+ * touching anything else.
+ *
+ * The version is major.minor. A minor version only appends fields at the end of an ops table, so a host loads
+ * every plugin of its major version up to its own minor and reads only the fields the plugin's minor has; a
+ * change of anything already there is a new major version. A plugin may target an older minor
+ * (SPREADMAP_TARGET_ABI_MINOR) to load into older hosts; its tables then end where that minor's did. */
 #ifndef SPREADMAP_ABI_H
 #define SPREADMAP_ABI_H
 #include <stddef.h>
 #include <stdint.h>
 
-#define SPREADMAP_PLUGIN_ABI 9u
+#define SPREADMAP_PLUGIN_ABI_MAJOR 10u
+#define SPREADMAP_PLUGIN_ABI_MINOR 1u
+#ifndef SPREADMAP_TARGET_ABI_MINOR
+#define SPREADMAP_TARGET_ABI_MINOR SPREADMAP_PLUGIN_ABI_MINOR
+#endif
+/* The descriptor's `abi` field: major in the high 16 bits, minor in the low (ABI 9 and older: a plain count). */
+#define SPREADMAP_ABI_VERSION(MAJOR, MINOR) (((MAJOR) << 16) | (MINOR))
+#define SPREADMAP_PLUGIN_ABI SPREADMAP_ABI_VERSION(SPREADMAP_PLUGIN_ABI_MAJOR, SPREADMAP_TARGET_ABI_MINOR)
 
 #if defined(_WIN32)
 #define SM_EXPORT __declspec(dllexport)
@@ -53,7 +65,7 @@ typedef struct sm_param_v1 {
 #define SM_BACKEND_CUDA 2u
 
 typedef struct sm_plugin_v1 {
-  uint32_t abi;        /* SPREADMAP_PLUGIN_ABI of the SDK the plugin was built with */
+  uint32_t abi;        /* SPREADMAP_PLUGIN_ABI: the version the plugin was built for */
   const char *kind;    /* "contact" | "spreader" | "metrics" | "surrogate" */
   const char *name;    /* equals the folder name and the .so stem */
   const char *version; /* the plugin's own version, "1.0.0" */

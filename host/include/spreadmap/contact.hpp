@@ -56,6 +56,10 @@ typedef struct sm_contact_ops_v1 {
   void (*walls_f64)(const void *self, const Particles<double> *p, const WallContacts<double> *w);
   void (*walls_f32)(const void *self, const Particles<float> *p, const WallContacts<float> *w);
   double (*range)(const void *self);  // how far across a gap the law attracts [m]; 0: touching only
+#if SPREADMAP_TARGET_ABI_MINOR >= 1
+  // ABI 10.1: history values per contact of this instance (`history` is then the most any instance keeps).
+  uint32_t (*history_of)(const void *self);
+#endif
 } sm_contact_ops_v1;
 
 // Minimum-image separation along one axis.
@@ -274,30 +278,56 @@ template <class Law, class Real> void wall_loop(const Law &law, const Particles<
   }
 }
 
-// A law with the cohesion part (contact_parts.hpp) has a member `cohesion` and writes its force as
-//   template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &, Real *hist) const;
-// with the part under `if constexpr (Cohesive)`. Its loops are compiled twice, through WithCohesion, and
-// the choice is made once per batch (in_loop_form): a scene without cohesion runs the law's code without
-// the part, the same instructions and bits as a law that never had it.
+// A law with the cohesion part (contact_parts.hpp) has a member `cohesion`, and one with the rolling
+// part a member `rolling`; it writes its force as
+//   template <bool Cohesive, bool Spring, class Real>
+//   SM_HD ContactForce<Real> force(const ContactState<Real> &, Real *hist) const;
+// (without the rolling part: force<Cohesive>) with each part under `if constexpr`. Its loops are compiled
+// for each choice, through LoopForm, and the choice is made once per batch (in_loop_form): a scene without
+// cohesion or a rolling spring runs the law's code without them, the same instructions and bits as a law
+// that never had them. The rolling spring adds its history after the law's: history_of(law) per instance.
 template <class Law>
 concept HasCohesion = requires(const Law &law) {
   { law.cohesion.on } -> std::convertible_to<bool>;
 };
+template <class Law>
+concept HasRolling = requires(const Law &law) {
+  { law.rolling.spring } -> std::convertible_to<bool>;
+};
 
-template <class Law, bool Cohesive> struct WithCohesion {
-  static constexpr int history = Law::history;
+template <class Law, bool Cohesive, bool Spring> struct LoopForm {
+  static constexpr int history = Law::history + (Spring ? 3 : 0);
   Law law;
   SM_HD double range() const requires Cohesive { return law.cohesion.range; }
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    return law.template force<Cohesive>(c, hist);
+    if constexpr (HasRolling<Law>) return law.template force<Cohesive, Spring>(c, hist);
+    else return law.template force<Cohesive>(c, hist);
   }
 };
 
-// Calls run(law as the loops take it): WithCohesion<Law, on?> for a law with the cohesion part, else the law.
-template <class Law, class Run> decltype(auto) in_loop_form(const Law &law, Run &&run) {
-  if constexpr (HasCohesion<Law>) {
-    if (law.cohesion.on) return run(WithCohesion<Law, true>{law});
-    return run(WithCohesion<Law, false>{law});
+// History values per contact of this instance of the law.
+template <class Law> int history_of(const Law &law) {
+  if constexpr (HasRolling<Law>) return Law::history + (law.rolling.spring ? 3 : 0);
+  else return Law::history;
+}
+
+// Calls run(law as the loops take it): LoopForm<Law, cohesion on?, rolling spring?> for a law with
+// either part, else the law. Springs false: the forms without the rolling spring only (the CUDA
+// kernels, which keep the law's own history; the host steps a scene with a spring on the CPU).
+template <bool Springs = true, class Law, class Run> decltype(auto) in_loop_form(const Law &law, Run &&run) {
+  if constexpr (HasCohesion<Law> || HasRolling<Law>) {
+    bool cohesive = false;
+    if constexpr (HasCohesion<Law>) cohesive = law.cohesion.on;
+    if constexpr (Springs && HasRolling<Law>) {
+      if (law.rolling.spring) {
+        if constexpr (HasCohesion<Law>)
+          if (cohesive) return run(LoopForm<Law, true, true>{law});
+        return run(LoopForm<Law, false, true>{law});
+      }
+    }
+    if constexpr (HasCohesion<Law>)
+      if (cohesive) return run(LoopForm<Law, true, false>{law});
+    return run(LoopForm<Law, false, false>{law});
   } else {
     return run(law);
   }
@@ -319,8 +349,15 @@ template <class Law> struct ContactOps {
   template <class Real> static void walls(const void *s, const Particles<Real> *p, const WallContacts<Real> *w) {
     in_loop_form(law(s), [&](const auto &form) { wall_loop(form, *p, *w); });
   }
+#if SPREADMAP_TARGET_ABI_MINOR >= 1
+  static std::uint32_t history(const void *s) { return static_cast<std::uint32_t>(history_of(law(s))); }
+  static constexpr sm_contact_ops_v1 table = {
+      Law::history + (HasRolling<Law> ? 3 : 0), &frequency, &zeta, &torque, &pairs<double>, &pairs<float>,
+      &walls<double>, &walls<float>, &range, &history};
+#else
   static constexpr sm_contact_ops_v1 table = {Law::history,  &frequency,     &zeta,         &torque, &pairs<double>,
                                               &pairs<float>, &walls<double>, &walls<float>, &range};
+#endif
 };
 }  // namespace detail
 

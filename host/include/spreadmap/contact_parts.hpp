@@ -5,7 +5,8 @@
 //     optionally clamped and optionally corrected so that the clamped contact still returns eps;
 //   - Coulomb slider variants (stick, viscous, coulomb) for laws without a tangential spring;
 //   - a Cundall-Strack tangential spring with Coulomb cap (history of 3 values);
-//   - rolling resistance (constant directional torque, Ai et al. 2011 model A);
+//   - rolling resistance: a constant directional torque (Ai et al. 2011 model A) or an elastic-plastic
+//     spring-dashpot (model C, EPSD; history of 3 values), chosen per instance;
 //   - cohesion (SJKR, DMT and JKR pull-off) acting while in contact, off unless a scene asks for it.
 // SI units throughout. The SM_HD parts follow hd.hpp's rules; bind helpers are host-only.
 #pragma once
@@ -89,6 +90,14 @@ inline constexpr sm_param_v1 param_friction =
     number("friction", "-", 0, 10, 0.185, "mu: sliding (Coulomb) friction coefficient, |F_t| <= mu |F_n|");
 inline constexpr sm_param_v1 param_rolling_friction = number(
     "rolling_friction", "-", 0, 1, 0, "mu_r: rolling resistance, torque mu_r r_eff |F_n| against the relative rolling");
+inline constexpr sm_param_v1 param_rolling_model =
+    enumeration("rolling_model", "constant|epsd", "constant",
+                "rolling resistance: constant (a torque mu_r r_eff |F_n| against the rolling) or epsd (a rolling "
+                "spring "
+                "k_r = 2.25 k_n mu_r^2 r_eff^2 limited at mu_r r_eff |F_n|, with a dashpot; the sphere rests)");
+inline constexpr sm_param_v1 param_rolling_damping =
+    number("rolling_damping", "-", 0, 2, 0.3,
+           "eta_r: epsd's dashpot, C_r = eta_r 2 sqrt(I_r k_r) with I_r = (7/5) m_eq r_eff^2 (off at the limit)");
 inline constexpr sm_param_v1 param_clamp_normal = boolean(
     "clamp_normal", false,
     "clamp F_n >= 0 (no attraction at the end of a damped contact); raises the restitution unless clamp_correction");
@@ -228,6 +237,69 @@ template <class Real> SM_HD void clear_history(Real *hist, int n) {
   for (int q = 0; q < n; ++q) hist[q] = 0;
 }
 
+// The rolling part a law holds (`Rolling rolling`): the constant torque above, or the elastic-plastic
+// spring-dashpot (EPSD, Ai et al. 2011 model C, as LIGGGHTS' rolling_friction epsd): a rolling spring
+// M_k, kept in the global frame in 3 values of history after the law's own and turned into the
+// current tangent plane each step, loaded by the relative rolling, M_k -= k_r w_r dt with
+// k_r = 2.25 k_n mu_r^2 r_eff^2 (k_n the law's normal stiffness, F_n / delta), and limited at
+// M_m = mu_r r_eff |F_n|; a dashpot M_d = -eta_r 2 sqrt(I_r k_r) w_r, I_r = (7/5) m_eq r_eff^2 (a sphere
+// rolling on a wall), acts below the limit only. Under a torque below M_m a sphere turns by the
+// elastic angle T / k_r and rests there; above it, it rolls against M_m. The spring's choice is made
+// per instance: the loops are compiled with and without it (LoopForm in contact.hpp), so a law
+// without the spring runs the code and bits it always ran. Host side: bind(); SM_HD: the torques.
+struct Rolling {
+  static constexpr int history = 3;  // of the spring; 0 for the constant torque
+  double mu_r;
+  bool spring;     // epsd
+  double damping;  // eta_r
+
+  static Rolling bind(const Values &v) {
+    const bool epsd = v.str("rolling_model") == "epsd";
+#if SPREADMAP_TARGET_ABI_MINOR < 1
+    if (epsd)
+      throw ParamError("rolling_model epsd needs plugin ABI 10.1 (history per instance); this plugin targets 10.0: "
+                       "rebuild it without SPREADMAP_TARGET_ABI_MINOR");
+#endif
+    return {v["rolling_friction"], epsd && v["rolling_friction"] > 0, v["rolling_damping"]};
+  }
+  // The stiffest rolling mode [rad/s]: k_r against the smallest relative inertia (2/5) m_eq r_eff^2 (r_eff
+  // cancels); 0 without the spring. k_n: the law's normal stiffness at the step's reference overlap [N/m].
+  double natural_frequency(double k_n, double m_eq) const {
+    if (!spring) return 0;
+    return std::sqrt(2.25 * k_n * mu_r * mu_r / (0.4 * m_eq));
+  }
+
+  // Torque on i [N m]. Spring: hist holds the spring's 3 values (after the law's).
+  template <bool Spring, class Real>
+  SM_HD Vec3<Real> torque(const ContactState<Real> &c, Real fn_abs, Real k_n, Real *hist) const {
+    if constexpr (!Spring) {
+      return rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    } else {
+      const Vec3<Real> w = c.w_rel - c.normal * dot(c.w_rel, c.normal);
+      Vec3<Real> m{hist[0], hist[1], hist[2]};
+      const Real before = norm(m);
+      m -= c.normal * dot(m, c.normal);  // into the current tangent plane, its size kept
+      const Real after = norm(m);
+      if (after > 0) m *= before / after;
+      const Real k_r = Real(2.25 * mu_r * mu_r) * k_n * c.r_eff * c.r_eff;
+      m -= w * (k_r * c.dt);
+      const Real limit = Real(mu_r) * c.r_eff * fn_abs, size = norm(m);
+      const bool mobilised = size > limit;
+      if (mobilised) m *= size > 0 ? limit / size : Real(0);
+      hist[0] = m.x;
+      hist[1] = m.y;
+      hist[2] = m.z;
+      if (mobilised) return m;
+      const Real inertia = Real(1.4) * c.m_eq * c.r_eff * c.r_eff;
+      return m - w * (Real(2 * damping) * std::sqrt(inertia * k_r));
+    }
+  }
+  // Clears the spring (the contact ended).
+  template <bool Spring, class Real> SM_HD void clear(Real *hist) const {
+    if constexpr (Spring) clear_history(hist, history);
+  }
+};
+
 // ---------------------------------------------------------------- cohesion (in contact and across a gap)
 
 // Schema entries of the cohesion part, one group added to every law's params[]. Each value stands on its
@@ -266,7 +338,7 @@ inline constexpr sm_param_v1 param_vdw_cutoff =
 // for powder spreading): F = r_eff A / (6 max(s, s_0)^2) for s < s_c, 0 beyond. It is continuous at contact and
 // drops by (s_0/s_c)^2 of its contact value at the cut-off. A law with it declares range() = s_c: the engine
 // then gives it pairs and plane records down to delta = -s_c (docs/cohesion.md).
-// `on` is false when all are 0; the laws' loops are then compiled without this part (WithCohesion in
+// `on` is false when all are 0; the laws' loops are then compiled without this part (LoopForm in
 // contact.hpp), so a scene without cohesion runs the very code and bits it ran before.
 struct Cohesion {
   bool on;

@@ -9,6 +9,7 @@
 
 #include <spreadmap/abi.h>
 
+#include "core/plugin_abi.hpp"
 #include "core/units.hpp"
 #include "core/files.hpp"
 #include "workflow/map/mapping.hpp"
@@ -99,7 +100,7 @@ PageSection cases_section(const fs::path &run, const json &manifest) {
 PageSection provenance_section(const fs::path &run, const json &manifest) {
   html::HtmlTable table({"what", "value"}, "keys");
   table.add({"spreadmap", html::escape(std::string(SPREADMAP_VERSION) + " (plugin ABI " +
-                                       std::to_string(SPREADMAP_PLUGIN_ABI) + ")")});
+                                       host_abi_text() + ")")});
   const json wf = member(manifest, "workflow");
   const std::string file = wf.value("file", "");
   table.add({"workflow", html::escape(file)});

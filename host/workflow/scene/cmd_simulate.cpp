@@ -14,6 +14,7 @@
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/stop.hpp"
+#include "engine/plugin_law.hpp"
 #include "workflow/stage/command_line.hpp"
 #include "workflow/stage/commands.hpp"
 #include "workflow/scene/scene_build.hpp"
@@ -101,7 +102,7 @@ int cmd_simulate(int argc, char **argv) {
 #endif
   auto run = scene::build_scene<double>(loaded, registry);
   auto &sim = *run->sim;
-  const engine::ContactLaw pair_law{run->pair.ops<sm_contact_ops_v1>(), run->pair.get()};
+  const engine::ContactLaw pair_law = engine::bound_law(run->pair);
   write_atomic(dir / "scene.json", resolved(spec, sim.size()).dump(2) + "\n");
   spdlog::info("{}: {} particles, {} walls, {:g} s in {} outputs to {}", spec.name, sim.size(), spec.walls.size(),
                spec.run.duration, spec.run.output_times.size(), dir.string());

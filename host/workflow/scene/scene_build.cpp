@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "engine/plugin_law.hpp"
 #include "workflow/scene/scene_parse.hpp"
 #include "workflow/scene/scene_walls.hpp"
 #include "workflow/scene/spreader_span.hpp"
@@ -64,6 +65,23 @@ void attach_backend(engine::Simulation<Real> &sim, const SceneFile &s, const Sce
                  s.file.string());
     return;
   }
+  // The CUDA kernels keep a law's own history; a rolling spring (rolling_model epsd) adds to it.
+  auto without_spring = [](const PluginInstance &law) {
+    return engine::law_history(engine::bound_law(law)) == cuda::contact_kernels(*law.plugin()).ops->history;
+  };
+  bool kernels_fit = without_spring(run.pair);
+  for (const PluginInstance *law : plane_laws) kernels_fit = kernels_fit && without_spring(*law);
+  for (const PluginInstance *law : spreader_laws) kernels_fit = kernels_fit && without_spring(*law);
+  if (!kernels_fit) {
+    if (s.backend == "auto") {
+      spdlog::info("{}: the rolling spring (rolling_model: epsd) steps on the CPU only; the scene runs on the CPU",
+                   s.file.string());
+      return;
+    }
+    throw InputError(fmt::format("error: {}: scene.backend: cuda: the rolling spring (rolling_model: epsd) steps on "
+                                 "the CPU only: set scene.backend: cpu or auto, or rolling_model: constant",
+                                 s.file.string()));
+  }
   cuda::ResidentLaws laws;
   laws.pair = cuda::contact_kernels(*run.pair.plugin());
   for (const PluginInstance *law : plane_laws) laws.planes.push_back(cuda::contact_kernels(*law->plugin()));
@@ -107,8 +125,7 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
   auto run = std::make_unique<SceneRun<Real>>();
   const std::string at = s.file.string() + ": ";
   run->pair = PluginInstance(law, s.pair_law.dump(), at + "contact");
-  auto bound = [](const PluginInstance &i) { return engine::ContactLaw{i.ops<sm_contact_ops_v1>(), i.get()}; };
-  run->sim = std::make_unique<engine::Simulation<Real>>(s.domain, bound(run->pair), settings_of(s));
+  run->sim = std::make_unique<engine::Simulation<Real>>(s.domain, engine::bound_law(run->pair), settings_of(s));
   auto &sim = *run->sim;
   sim.add_particles(loaded.particles.set, s.particles.density);
   std::vector<const PluginInstance *> plane_laws, spreader_laws;
@@ -116,12 +133,12 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
     const PluginInstance &wall_law = run->wall_laws.emplace_back(law, w.law.dump(), at + w.key_path);
     if (w.kind == WallKind::cylinder) {
       const CylinderWall &geometry = run->cylinders.emplace_back(w.cylinder);
-      sim.add_geometry({&cylinder_wall_ops(), &geometry, bound(wall_law), w.name, 0.0});
+      sim.add_geometry({&cylinder_wall_ops(), &geometry, engine::bound_law(wall_law), w.name, 0.0});
       continue;
     }
     if (w.kind == WallKind::block) {
       const BlockWall &geometry = run->blocks.emplace_back(block_of(w));
-      sim.add_geometry({&block_wall_ops(), &geometry, bound(wall_law), w.name, 0.0});
+      sim.add_geometry({&block_wall_ops(), &geometry, engine::bound_law(wall_law), w.name, 0.0});
       continue;
     }
     if (w.kind == WallKind::spreader) {
@@ -131,15 +148,16 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
       if (const auto shortfall = spreader_span_shortfall(spreader.description(), s.domain);
           shortfall && shortfall->periodic)
         throw InputError(fmt::format("error: {}{}: {}\n  {}", at, w.key_path, shortfall->what, shortfall->fix));
-      sim.add_geometry({&spreader.ops(), plugin.get(), bound(wall_law), w.name, w.spreader.time_offset});
+      sim.add_geometry({&spreader.ops(), plugin.get(), engine::bound_law(wall_law), w.name, w.spreader.time_offset});
       run->spreaders.push_back(spreader);
       spreader_laws.push_back(&wall_law);
       continue;
     }
     const bool moves_now = w.start <= 0;
+    const Vec velocity_now = moves_now ? w.velocity : Vec{0, 0, 0};
     for (const auto &p : planes_of(w)) {
       const std::size_t index =
-          sim.add_plane_wall({p.point, p.normal, moves_now ? w.velocity : Vec{0, 0, 0}, bound(wall_law), true, p.name});
+          sim.add_plane_wall({p.point, p.normal, velocity_now, engine::bound_law(wall_law), true, p.name});
       plane_laws.push_back(&wall_law);
       if (w.velocity == Vec{0, 0, 0}) continue;
       if (!moves_now) run->delayed.push_back({index, w.velocity, w.start});

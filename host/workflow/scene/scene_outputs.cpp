@@ -45,7 +45,7 @@ std::vector<PairForce> pair_forces(engine::Simulation<double> &sim, const engine
   const auto &p = sim.arrays();
   const auto &list = sim.neighbours();
   const engine::Domain &dom = sim.domain();
-  const unsigned history = law.ops->history;
+  const unsigned history = engine::law_history(law);
   std::vector<PairForce> out;
   if (list.start.size() != p.size() + 1) return out;  // no list yet: nothing has been evaluated
   for (std::uint32_t i = 0; i < p.size(); ++i)

@@ -5,6 +5,7 @@
 #include <exception>
 #include <numbers>
 
+#include "engine/plugin_law.hpp"
 #include "engine/stability.hpp"
 #include "workflow/spreading/powder_cost.hpp"
 
@@ -22,7 +23,7 @@ Location where(const YAML::Node &user, const std::string &file, const char *sect
 template <class Ask>
 auto of_bound_law(PluginRegistry &registry, const Scene &scene, const nlohmann::json &params, Ask ask) {
   const PluginInstance law(registry.get("contact", scene.contact.use), params.dump(), "scene.contact");
-  return ask(engine::ContactLaw{law.ops<sm_contact_ops_v1>(), law.get()});
+  return ask(engine::bound_law(law));
 }
 
 // The critical step of a law bound with `params` between bodies of m_eq and r_eff [s]; 0: none is stable.

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/plugin_law.hpp"
 #include "engine/stability.hpp"
 #include "powder/heap.hpp"
 #include "workflow/spreading/powder_sizes.hpp"
@@ -35,7 +36,7 @@ CaseCost estimate_case_cost(const Scene &given, PluginRegistry &registry) {
   c.smallest = sizes.lower();
   c.median = sizes.quantile(0.5, powder::FractionBasis::number);
   const PluginInstance law(registry.get("contact", scene.contact.use), scene.contact.params.dump(), "scene.contact");
-  const engine::ContactLaw contact{law.ops<sm_contact_ops_v1>(), law.get()};
+  const engine::ContactLaw contact = engine::bound_law(law);
   // Two equal spheres: m_eq = m / 2, r_eff = d / 4.
   auto step_for = [&](double d) {
     if (scene.time.step > 0) return scene.time.step;

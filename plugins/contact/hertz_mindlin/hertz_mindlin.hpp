@@ -16,7 +16,8 @@
 // natural_frequency is evaluated at the Hertz stiffness of an undamped impact at v_max, whose overlap
 // is delta_max = (15 m_eq v_max^2 / (16 E* sqrt(R)))^(2/5); it is the larger of the normal mode
 // sqrt(S_n/m_eq) and the tangential one sqrt(k_t/m_t), so the host can pick a stable step.
-// Rolling resistance optional (contact_parts.hpp). Optional cohesion (SJKR, DMT or JKR pull-off in contact,
+// Rolling resistance optional: a constant torque or the rolling spring (epsd; docs/rolling.md).
+// Optional cohesion (SJKR, DMT or JKR pull-off in contact,
 // van der Waals across a gap; contact_parts.hpp, docs/cohesion.md), subtracted from F_n; across a gap
 // the attraction alone acts. natural_frequency then takes the overlap of
 // the impact at v_max with the attraction's work added (the SJKR softening, which only slows the
@@ -37,6 +38,8 @@ struct HertzMindlin {
       param_restitution,
       param_friction,
       param_rolling_friction,
+      param_rolling_model,
+      param_rolling_damping,
       param_clamp_normal,
       number("v_max", "m/s", 1e-4, 1e3, 0.5,
              "V_max: impact speed at which natural_frequency evaluates the Hertz stiffness (time step)"),
@@ -53,7 +56,7 @@ struct HertzMindlin {
   double g_star;  // G* [Pa]
   double alpha;   // damping factor, calibrated to the restitution
   double mu;
-  double mu_r;
+  Rolling rolling;
   double v_max;  // [m/s]
   bool clamp;
   Cohesion cohesion;
@@ -106,7 +109,7 @@ struct HertzMindlin {
             e / (4 * (1 + nu) * (2 - nu)),
             alpha_for_restitution(v["restitution"], clamp),
             v["friction"],
-            v["rolling_friction"],
+            Rolling::bind(v),
             v["v_max"],
             clamp,
             Cohesion::bind(v)};
@@ -132,18 +135,23 @@ struct HertzMindlin {
   }
   double natural_frequency(double m_eq, double r_eff) const {
     const double a = std::sqrt(r_eff * overlap_at_v_max(m_eq, r_eff));
-    return std::sqrt(max(2 * e_star * a / m_eq, 8 * g_star * a / tangential_mass(m_eq)));
+    const double rolling_mode = rolling.natural_frequency(4.0 / 3.0 * e_star * a, m_eq);  // secant k_n
+    return max(std::sqrt(max(2 * e_star * a / m_eq, 8 * g_star * a / tangential_mass(m_eq))), rolling_mode);
   }
   double damping_ratio(double, double) const { return alpha / 2; }
-  bool makes_torque() const { return mu > 0 || mu_r > 0; }
+  bool makes_torque() const { return mu > 0 || rolling.mu_r > 0; }
 
+  // Without the rolling spring (Law::history values in hist); the loops reach it through in_loop_form.
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    return cohesion.on ? force<true>(c, hist) : force<false>(c, hist);
+    return cohesion.on ? force<true, false>(c, hist) : force<false, false>(c, hist);
   }
-  template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
+  // hist: the tangential spring's 3 values, then the rolling spring's 3 (Spring).
+  template <bool Cohesive, bool Spring, class Real>
+  SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
     if (!(c.overlap > 0)) {  // apart, or across a gap within the cohesion's range: the attraction alone
       clear_history(hist, history);
+      rolling.template clear<Spring>(hist + history);
       if constexpr (Cohesive) f.normal = -cohesion.gap_force(c.r_eff, c.overlap);
       return f;
     }
@@ -154,7 +162,8 @@ struct HertzMindlin {
     const Real fn_abs = f.normal < 0 ? -f.normal : f.normal;
     const Real beta_t = Real(alpha) * std::sqrt(tangential_mass(c.m_eq) * k_t);
     f.tangent = tangential_spring(c.normal, c.v_t, k_t, beta_t, Real(mu) * fn_abs, c.dt, hist);
-    f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    // the rolling spring's k_n is the secant stiffness F_n / delta = (2/3) S_n, as LIGGGHTS' epsd takes it
+    f.torque = rolling.template torque<Spring>(c, fn_abs, Real(2) / Real(3) * s_n, hist + history);
     if constexpr (Cohesive) f.normal -= cohesion.force(c.r_eff, c.overlap);
     return f;
   }

@@ -11,6 +11,7 @@
 // gran/hooke/history): a stuck contact holds a static tangential force, so nothing creeps.
 // Reference: Cundall & Strack 1979; LAMMPS pair gran/hooke/history (slip reset of the spring).
 // Assumptions: spheres; F_n unclamped unless clamp_normal; the cap uses |F_n| of the repulsion.
+// Optional rolling resistance: a constant torque or the rolling spring (epsd; docs/rolling.md).
 // Optional cohesion (SJKR, DMT or JKR pull-off in contact, van der Waals across a gap; contact_parts.hpp,
 // docs/cohesion.md), subtracted from F_n. Units SI. History: 3 values per contact, the spring elongation s [m] in the
 // global frame.
@@ -33,6 +34,8 @@ struct HookeHistory {
       param_clamp_normal,
       param_clamp_correction,
       param_rolling_friction,
+      param_rolling_model,
+      param_rolling_damping,
       param_cohesion_energy_density,
       param_surface_energy,
       param_pull_off,
@@ -46,7 +49,7 @@ struct HookeHistory {
   double mu;
   double kappa;         // k_t / K_n
   double tangent_rate;  // beta_t / m_eq = 2 zeta omega0 sqrt(kappa 2/7) [1/s]
-  double mu_r;
+  Rolling rolling;
   Cohesion cohesion;
 
   static HookeHistory bind(const Values &v) {
@@ -56,7 +59,7 @@ struct HookeHistory {
             v["friction"],
             kappa,
             2 * n.zeta * n.omega0 * std::sqrt(kappa * 2.0 / 7.0),
-            v["rolling_friction"],
+            Rolling::bind(v),
             Cohesion::bind(v)};
   }
 
@@ -64,18 +67,23 @@ struct HookeHistory {
   // the normal mode, unless it cancels K_n.
   double natural_frequency(double m_eq, double r_eff) const {
     if (normal.collapses_under(cohesion, m_eq, r_eff)) return no_stable_step;
-    return normal.omega0 * std::sqrt(max(1.0, kappa * 3.5));
+    const double rolling_mode = rolling.natural_frequency(m_eq * normal.omega0 * normal.omega0, m_eq);
+    return max(normal.omega0 * std::sqrt(max(1.0, kappa * 3.5)), rolling_mode);
   }
   double damping_ratio(double, double) const { return normal.zeta; }
-  bool makes_torque() const { return mu > 0 || mu_r > 0; }
+  bool makes_torque() const { return mu > 0 || rolling.mu_r > 0; }
 
+  // Without the rolling spring (Law::history values in hist); the loops reach it through in_loop_form.
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    return cohesion.on ? force<true>(c, hist) : force<false>(c, hist);
+    return cohesion.on ? force<true, false>(c, hist) : force<false, false>(c, hist);
   }
-  template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
+  // hist: the tangential spring's 3 values, then the rolling spring's 3 (Spring).
+  template <bool Cohesive, bool Spring, class Real>
+  SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
     if (!(c.overlap > 0)) {  // apart, or across a gap within the cohesion's range: the attraction alone
       clear_history(hist, history);
+      rolling.template clear<Spring>(hist + history);
       if constexpr (Cohesive) f.normal = -cohesion.gap_force(c.r_eff, c.overlap);
       return f;
     }
@@ -84,7 +92,7 @@ struct HookeHistory {
     const Real w = Real(normal.omega0);
     const Real k_t = Real(kappa) * c.m_eq * w * w;
     f.tangent = tangential_spring(c.normal, c.v_t, k_t, c.m_eq * Real(tangent_rate), Real(mu) * fn_abs, c.dt, hist);
-    f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    f.torque = rolling.template torque<Spring>(c, fn_abs, c.m_eq * w * w, hist + history);
     if constexpr (Cohesive) f.normal -= cohesion.force(c.r_eff, c.overlap);
     return f;
   }

@@ -20,7 +20,7 @@
 // and full friction acts in alternate directions while a contact should be stuck; it takes a slip
 // within the round-off of the normal speed for none (slip_round_off): a head-on impact has no
 // friction, even with slip_speed_min = 0.
-// Optional rolling resistance (constant directional torque, see contact_parts.hpp).
+// Optional rolling resistance: a constant torque or the rolling spring (epsd; docs/rolling.md).
 // Optional cohesion (SJKR, DMT or JKR pull-off in contact, van der Waals across a gap; contact_parts.hpp,
 // docs/cohesion.md), subtracted from F_n after the slider and the rolling torque took |F_n| of the
 // repulsion (LIGGGHTS' tangential_reduce off).
@@ -47,6 +47,8 @@ struct HookeSlider {
       param_clamp_normal,
       param_clamp_correction,
       param_rolling_friction,
+      param_rolling_model,
+      param_rolling_damping,
       param_cohesion_energy_density,
       param_surface_energy,
       param_pull_off,
@@ -61,7 +63,7 @@ struct HookeSlider {
   Slider slider;
   double slip_rate;       // gamma_t [1/s]
   double slip_speed_min;  // [m/s]
-  double mu_r;            // rolling friction
+  Rolling rolling;
   Cohesion cohesion;
 
   static HookeSlider bind(const Values &v) {
@@ -72,22 +74,26 @@ struct HookeSlider {
             slider_from_name(v.str("slider")),
             gamma,
             v["slip_speed_min"],
-            v["rolling_friction"],
+            Rolling::bind(v),
             Cohesion::bind(v)};
   }
 
   // The SJKR softening only slows the contact (the step stays the one for omega0) unless it cancels K_n.
   double natural_frequency(double m_eq, double r_eff) const {
-    return normal.collapses_under(cohesion, m_eq, r_eff) ? no_stable_step : normal.omega0;
+    if (normal.collapses_under(cohesion, m_eq, r_eff)) return no_stable_step;
+    return max(normal.omega0, rolling.natural_frequency(m_eq * normal.omega0 * normal.omega0, m_eq));
   }
   double damping_ratio(double, double) const { return normal.zeta; }
-  bool makes_torque() const { return mu > 0 || mu_r > 0; }
+  bool makes_torque() const { return mu > 0 || rolling.mu_r > 0; }
 
+  // Without the rolling spring (Law::history values in hist); the loops reach it through in_loop_form.
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    return cohesion.on ? force<true>(c, hist) : force<false>(c, hist);
+    return cohesion.on ? force<true, false>(c, hist) : force<false, false>(c, hist);
   }
-  template <bool Cohesive, class Real> SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *) const {
+  template <bool Cohesive, bool Spring, class Real>
+  SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     // No branch on the contact (selects only; overlap <= 0 gives zeros), so that loops over contacts vectorise.
+    // The rolling spring's form keeps history and is not vectorised: it may branch.
     ContactForce<Real> f;
     const bool touching = c.overlap > 0;
     const Real fn = normal.force(c.m_eq, c.overlap, c.v_n);
@@ -96,7 +102,13 @@ struct HookeSlider {
     const Real round_off = slip_round_off(c.v_n < 0 ? -c.v_n : c.v_n);
     f.tangent =
         slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min), round_off);
-    f.torque = rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
+    if constexpr (Spring) {
+      const Real w = Real(normal.omega0);
+      if (touching) f.torque = rolling.template torque<Spring>(c, fn_abs, c.m_eq * w * w, hist);
+      else rolling.template clear<Spring>(hist);
+    } else {
+      f.torque = rolling.template torque<Spring>(c, fn_abs, Real(0), hist);
+    }
     if constexpr (Cohesive)
       f.normal -= touching ? cohesion.force(c.r_eff, c.overlap) : cohesion.gap_force(c.r_eff, c.overlap);
     return f;
