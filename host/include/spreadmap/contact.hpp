@@ -295,8 +295,11 @@ concept HasRolling = requires(const Law &law) {
   { law.rolling.spring } -> std::convertible_to<bool>;
 };
 
+// History values the rolling spring (Rolling in contact_parts.hpp) keeps after its law's own.
+inline constexpr int rolling_spring_history = 3;
+
 template <class Law, bool Cohesive, bool Spring> struct LoopForm {
-  static constexpr int history = Law::history + (Spring ? 3 : 0);
+  static constexpr int history = Law::history + (Spring ? rolling_spring_history : 0);
   Law law;
   SM_HD double range() const requires Cohesive { return law.cohesion.range; }
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
@@ -307,7 +310,7 @@ template <class Law, bool Cohesive, bool Spring> struct LoopForm {
 
 // History values per contact of this instance of the law.
 template <class Law> int history_of(const Law &law) {
-  if constexpr (HasRolling<Law>) return Law::history + (law.rolling.spring ? 3 : 0);
+  if constexpr (HasRolling<Law>) return Law::history + (law.rolling.spring ? rolling_spring_history : 0);
   else return Law::history;
 }
 
@@ -351,9 +354,9 @@ template <class Law> struct ContactOps {
   }
 #if SPREADMAP_TARGET_ABI_MINOR >= 1
   static std::uint32_t history(const void *s) { return static_cast<std::uint32_t>(history_of(law(s))); }
-  static constexpr sm_contact_ops_v1 table = {
-      Law::history + (HasRolling<Law> ? 3 : 0), &frequency, &zeta, &torque, &pairs<double>, &pairs<float>,
-      &walls<double>, &walls<float>, &range, &history};
+  static constexpr std::uint32_t most_history = Law::history + (HasRolling<Law> ? rolling_spring_history : 0);
+  static constexpr sm_contact_ops_v1 table = {most_history,  &frequency,     &zeta,         &torque, &pairs<double>,
+                                              &pairs<float>, &walls<double>, &walls<float>, &range,  &history};
 #else
   static constexpr sm_contact_ops_v1 table = {Law::history,  &frequency,     &zeta,         &torque, &pairs<double>,
                                               &pairs<float>, &walls<double>, &walls<float>, &range};

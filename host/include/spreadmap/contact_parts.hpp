@@ -93,8 +93,7 @@ inline constexpr sm_param_v1 param_rolling_friction = number(
 inline constexpr sm_param_v1 param_rolling_model =
     enumeration("rolling_model", "constant|epsd", "constant",
                 "rolling resistance: constant (a torque mu_r r_eff |F_n| against the rolling) or epsd (a rolling "
-                "spring "
-                "k_r = 2.25 k_n mu_r^2 r_eff^2 limited at mu_r r_eff |F_n|, with a dashpot; the sphere rests)");
+                "spring k_r = 2.25 k_n mu_r^2 r_eff^2 limited at mu_r r_eff |F_n|, with a dashpot; the sphere rests)");
 inline constexpr sm_param_v1 param_rolling_damping =
     number("rolling_damping", "-", 0, 2, 0.3,
            "eta_r: epsd's dashpot, C_r = eta_r 2 sqrt(I_r k_r) with I_r = (7/5) m_eq r_eff^2 (off at the limit)");
@@ -248,7 +247,7 @@ template <class Real> SM_HD void clear_history(Real *hist, int n) {
 // per instance: the loops are compiled with and without it (LoopForm in contact.hpp), so a law
 // without the spring runs the code and bits it always ran. Host side: bind(); SM_HD: the torques.
 struct Rolling {
-  static constexpr int history = 3;  // of the spring; 0 for the constant torque
+  static constexpr int history = rolling_spring_history;  // of the spring; none for the constant torque
   double mu_r;
   bool spring;     // epsd
   double damping;  // eta_r
