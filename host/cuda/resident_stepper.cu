@@ -248,7 +248,17 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       index_[k++].upload(c.data(), c.size());
     });
     auto &list = state.list;
-    history_ = engine::law_history(state.pair_law);
+    // The kernels keep each law's own history; a rolling spring (rolling_model: epsd) adds to it on the
+    // CPU only. Refused here, where every caller of the GPU backend passes, not only the scene files'.
+    bool fits = engine::law_history(state.pair_law) == laws_.pair.ops->history;
+    for (std::size_t w = 0; w < state.planes.size(); ++w)
+      fits = fits && state.planes[w].slot.history == laws_.planes.at(w).ops->history;
+    for (std::size_t w = 0; w < state.geometries.size(); ++w)
+      fits = fits && state.geometries[w].slot.history == laws_.geometries.at(w).second.ops->history;
+    if (!fits)
+      throw InputError("error: the rolling spring (rolling_model: epsd) steps on the CPU only: set backend: cpu, "
+                       "or rolling_model: constant");
+    history_ = laws_.pair.ops->history;
     if (state.list_valid && list.start.size() == std::size_t(n_) + 1) {
       start_.upload(list.start.data(), list.start.size());
       nbr_.upload(list.nbr.data(), list.nbr.size());
