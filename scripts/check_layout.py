@@ -34,8 +34,12 @@ names      Duplicate names across folders: source files of one file name (stem a
            X<...> are left out) declared at namespace scope under one name in different folders of
            host/. Each location shows its namespace, "(anonymous)" for an unnamed one.
 
+prefix     The "error: " before a message is written in one place, host/core/error.cpp (printed()): a
+           string literal in code (comments aside) anywhere else under host/ that starts with it is
+           printed as file:line.
+
 The last line is the summary `layout: N include cycles, M functions over 80 lines, K duplicate file
-names, L duplicate type names` (only the checks run); the exit status is 1 when there is any finding,
+names, L duplicate type names, P error prefixes` (only the checks run); the exit status is 1 when there is any finding,
 0 when there is none, 2 for bad arguments.
 """
 
@@ -623,6 +627,22 @@ def check_names(root):
     return len(file_lines), len(type_lines), file_lines + type_lines
 
 
+PREFIX_HOME = "host/core/error.cpp"
+PREFIX_RE = re.compile(r'(?<![\\\w])"error: ')
+
+
+def check_prefix(root):
+    found = []
+    for f in source_files(root / "host"):
+        rel = f.relative_to(root).as_posix()
+        if rel == PREFIX_HOME:
+            continue
+        code = blank(f.read_text(encoding="utf-8", errors="replace"), strings=False, directives=True)
+        for m in PREFIX_RE.finditer(code):
+            found.append(f"{rel}:{code.count(chr(10), 0, m.start()) + 1}")
+    return len(found), found
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description="Layout checks for host/ (issue 36): include cycles between "
                                  "folders, long functions in host/workflow/, duplicate file and type names.")
@@ -633,13 +653,13 @@ def main(argv=None):
     ap.add_argument("--functions-in", action="append", metavar="DIR",
                     help="folder, relative to the root, whose functions are measured (repeatable; "
                     "default host/workflow)")
-    ap.add_argument("--only", action="append", choices=["cycles", "functions", "names"],
+    ap.add_argument("--only", action="append", choices=["cycles", "functions", "names", "prefix"],
                     help="run only this check (repeatable)")
     args = ap.parse_args(argv)
     root = args.root.resolve()
     if not (root / "host").is_dir():
         ap.error(f"{root} has no host/ folder")
-    only = set(args.only or ["cycles", "functions", "names"])
+    only = set(args.only or ["cycles", "functions", "names", "prefix"])
     summary = []
     total = 0
     if "cycles" in only:
@@ -662,6 +682,12 @@ def main(argv=None):
         print("\n".join(lines) if lines else "none")
         summary.append(f"{nf} duplicate file names, {nt} duplicate type names")
         total += nf + nt
+    if "prefix" in only:
+        n, lines = check_prefix(root)
+        print(f"== \"error: \" written outside {PREFIX_HOME} ({n})")
+        print("\n".join(lines) if lines else "none")
+        summary.append(f"{n} error prefixes")
+        total += n
     print("layout: " + ", ".join(summary))
     return 1 if total else 0
 

@@ -34,7 +34,7 @@ std::vector<double> loo_nrmse_percent(const Model &fitted, const Eigen::MatrixXd
                                       const std::vector<Eigen::Index> &rows) {
   const nlohmann::json info = fitted.fit_info();
   if (!info.contains("loo_mean"))
-    throw std::invalid_argument("the model reports no leave-one-out predictions (loo_mean): use surrogate/gp");
+    throw std::invalid_argument("the model reports no leave-one-out predictions (loo_mean): use a surrogate that does");
   std::vector<Eigen::Index> picked = rows;
   if (picked.empty())
     for (Eigen::Index k = 0; k < y.rows(); ++k) picked.push_back(k);
@@ -87,7 +87,7 @@ AdaptiveResult adaptive_design(const Eigen::MatrixXd &cand, const std::function<
       r.x.row(k) = cand.row(Eigen::Index(r.chosen[std::size_t(k)])), r.y.row(k) = ys[std::size_t(k)];
     auto model = make_model();
     if (!model->has_std())
-      throw std::invalid_argument("adaptive design: the model gives no standard deviation (use surrogate/gp)");
+      throw std::invalid_argument("adaptive design: the model gives no standard deviation (use a surrogate that does)");
     model->fit(r.x, r.y);
     AdaptiveStep step{std::size_t(n), loo_nrmse_percent(*model, r.y)};
     r.history.push_back(step);

@@ -84,7 +84,7 @@ MultiFidelityResult multi_fidelity_design(
     }
     auto model = make_model();
     if (!model->has_std())
-      throw std::invalid_argument("multi-fidelity design: the model gives no standard deviation (use surrogate/gp)");
+      throw std::invalid_argument("multi-fidelity design: the model gives no standard deviation (use a surrogate that does)");
     model->fit(r.x, r.y);
     MultiFidelityStep step{r.cheap, r.expensive, loo_nrmse_percent(*model, r.y, expensive_rows)};
     r.history.push_back(step);

@@ -34,7 +34,7 @@ int cmd_plugins(int argc, char **argv) {
   std::vector<std::string> kinds = sm::plugin_kinds();
   if (!kind.empty()) {
     if (std::find(kinds.begin(), kinds.end(), kind) == kinds.end())
-      throw sm::InputError("error: --kind " + kind + ": not a plugin kind (" + sm::join(kinds) + ")");
+      throw sm::InputError("--kind " + kind + ": not a plugin kind (" + sm::join(kinds) + ")");
     kinds = {kind};
   }
   nlohmann::json all = nlohmann::json::array();
@@ -68,7 +68,7 @@ int cmd_plugins(int argc, char **argv) {
     for (const auto &k : kinds)
       for (const auto &n : reg.names(k)) every.push_back(n);
     const std::string near = sm::closest(name, every);
-    throw sm::InputError("error: no plugin named '" + name + "'" +
+    throw sm::InputError("no plugin named '" + name + "'" +
                          (near.empty() ? "" : "; did you mean '" + near + "'?") + " available: " + sm::join(every));
   }
   if (format == "json") std::cout << all.dump(2) << "\n";

@@ -24,33 +24,33 @@ void check_cluster_options(const sm::cluster::ClusterOptions &cl, const sm::RunO
   const auto names = sm::cluster::executor_names();
   if (std::find(names.begin(), names.end(), cl.executor) == names.end()) {
     const std::string near = sm::closest(cl.executor, names);
-    throw sm::InputError("error: --executor " + cl.executor + ": not an executor (" + sm::join(names) + ")" +
+    throw sm::InputError("--executor " + cl.executor + ": not an executor (" + sm::join(names) + ")" +
                          (near.empty() ? "" : "; did you mean '" + near + "'?"));
   }
   if (cl.dry_run && cl.executor != "slurm")
     throw sm::InputError(
-        "error: --dry-run writes the Slurm scripts without submitting them: use it with --executor slurm");
+        "--dry-run writes the Slurm scripts without submitting them: use it with --executor slurm");
   if (vm.count("threads-per-rank") && cl.threads_per_rank < 1)
-    throw sm::InputError("error: --threads-per-rank must be at least 1");
+    throw sm::InputError("--threads-per-rank must be at least 1");
   if (vm.count("threads-per-rank") && cl.executor == "local" && !opt.only_case)
     throw sm::InputError(
-        "error: --threads-per-rank is for --executor mpi or slurm (or --case); a local run takes "
+        "--threads-per-rank is for --executor mpi or slurm (or --case); a local run takes "
         "scene.threads and --jobs");
   if (opt.jobs != 1 && cl.executor != "local")
-    throw sm::InputError("error: --jobs is for the local executor; with --executor " + cl.executor +
+    throw sm::InputError("--jobs is for the local executor; with --executor " + cl.executor +
                          " each rank or array task runs one case at a time (see --threads-per-rank)");
   if (opt.only_case && cl.executor != "local")
-    throw sm::InputError("error: --case runs one case here; it does not go with --executor " + cl.executor);
-  if (opt.only_case && opt.jobs != 1) throw sm::InputError("error: --case runs one case: --jobs does not apply");
+    throw sm::InputError("--case runs one case here; it does not go with --executor " + cl.executor);
+  if (opt.only_case && opt.jobs != 1) throw sm::InputError("--case runs one case: --jobs does not apply");
   // mpirun -n N without --executor mpi: N copies of the whole run would fill one folder at once
   for (const char *size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
     if (const char *n = std::getenv(size); n && std::atoi(n) > 1 && cl.executor != "mpi")
-      throw sm::InputError(std::string("error: this is one of ") + n + " MPI ranks, but --executor is " + cl.executor +
+      throw sm::InputError(std::string("this is one of ") + n + " MPI ranks, but --executor is " + cl.executor +
                            ": every rank would run every case. Add --executor mpi");
   if (opt.only_case)
     for (const auto &s : opt.only)
       if (s != "simulate")
-        throw sm::InputError("error: --case runs one case of the simulate stage; --only " + s + " does not go with it");
+        throw sm::InputError("--case runs one case of the simulate stage; --only " + s + " does not go with it");
 }
 
 }  // namespace
@@ -89,7 +89,7 @@ int cmd_run(int argc, char **argv) {
     return 0;
   c.apply();
   opt.quiet = c.quiet;
-  if (opt.jobs < 1) throw sm::InputError("error: --jobs must be at least 1");
+  if (opt.jobs < 1) throw sm::InputError("--jobs must be at least 1");
   if (vm.count("case")) {
     opt.only_case = one_case;
     opt.case_threads = cluster.threads_per_rank;

@@ -54,10 +54,10 @@ int cmd_stages(int argc, char **argv) {
   if (!parse(argc, argv, d, p, vm, "stages [NAME] [--format table|json]")) return 0;
   c.apply();
   if (format != "table" && format != "json")
-    throw InputError("error: --format " + format + ": write table or json");
+    throw InputError("--format " + format + ": write table or json");
   if (!name.empty() && !find_stage(name)) {
     const std::string near = closest(name, stage_names());
-    throw InputError("error: no stage named '" + name + "'" + (near.empty() ? "" : "; did you mean '" + near + "'?") +
+    throw InputError("no stage named '" + name + "'" + (near.empty() ? "" : "; did you mean '" + near + "'?") +
                      " stages: " + join(stage_names()));
   }
   nlohmann::json all = nlohmann::json::array();

@@ -50,7 +50,7 @@ int cmd_validate(int argc, char **argv) {
       auto v = sm::validate_workflow(f, sm::PluginRegistry::global());
       std::cout << f << ": ok (" << v.wf.stages.size() << " stages)\n";
     } catch (const sm::Error &e) {
-      std::cerr << e.what() << "\n";
+      std::cerr << sm::printed(e);
       ++failures;
     }
   }

@@ -36,18 +36,18 @@ int run_command_line(int argc, char **argv) {
     }
     if (const CommandInfo *command = find_command(name)) return command->run(argc - 1, argv + 1);
     const std::string near = closest(name, command_names());
-    std::cerr << "error: unknown command '" << name << "'" << (near.empty() ? "" : "; did you mean '" + near + "'?")
-              << "\n"
+    std::cerr << printed(InputError("unknown command '" + name + "'" +
+                                    (near.empty() ? "" : "; did you mean '" + near + "'?")))
               << usage();
     return exit_input;
   } catch (const Error &e) {
-    std::cerr << e.what() << "\n";
+    std::cerr << printed(e);
     return e.exit_code;
   } catch (const boost::program_options::error &e) {
-    std::cerr << "error: " << name << ": " << e.what() << "\n  see: spreadmap " << name << " --help\n";
+    std::cerr << printed(InputError(name + ": " + e.what() + "\n  see: spreadmap " + name + " --help"));
     return exit_input;
   } catch (const std::exception &e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << printed(e);
     return exit_failure;
   }
 }

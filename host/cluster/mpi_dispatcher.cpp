@@ -21,7 +21,7 @@ std::string on_rank(const CaseOutcome &o) { return " on rank " + std::to_string(
 }  // namespace
 
 void MpiDispatcher::run_cases(CaseBatch &batch, StageContext &ctx) {
-  if (released_) throw RunFailure("error: MPI: the workers were already released before the simulate stage");
+  if (released_) throw RunFailure("MPI: the workers were already released before the simulate stage");
   if (batch.jobs.empty()) return;
   if (mpi_.size() == 1) return run_alone(batch, ctx);
   hand_out(batch, ctx);

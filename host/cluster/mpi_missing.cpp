@@ -8,7 +8,7 @@ bool mpi_available() { return false; }
 
 int run_on_mpi(const std::filesystem::path &, RunOptions, const ClusterOptions &, PluginRegistry &) {
   throw InputError(
-      "error: --executor mpi: this spreadmap was built without MPI. Install an MPI (Debian: apt-get "
+      "--executor mpi: this spreadmap was built without MPI. Install an MPI (Debian: apt-get "
       "install libopenmpi-dev openmpi-bin), configure the build again and rebuild; or use --executor "
       "slurm, or the local executor (--jobs N)");
 }

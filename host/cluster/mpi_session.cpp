@@ -20,7 +20,7 @@ void check(int rc, const char *what) {
   char text[MPI_MAX_ERROR_STRING] = {};
   int len = 0;
   MPI_Error_string(rc, text, &len);
-  throw RunFailure(std::string("error: MPI: ") + what + ": " + text);
+  throw RunFailure(std::string("MPI: ") + what + ": " + text);
 }
 
 }  // namespace

@@ -50,13 +50,13 @@ void plan_stages(SlurmPlan &plan, const RunOptions &o, const Workflow &wf) {
 std::string submit(const fs::path &script) {
   const std::string command = "bash " + shell_quote(script.string());
   std::FILE *pipe = ::popen(command.c_str(), "r");
-  if (!pipe) throw RunFailure("error: --executor slurm: cannot start " + command);
+  if (!pipe) throw RunFailure("--executor slurm: cannot start " + command);
   std::string out;
   char buf[512];
   while (std::fgets(buf, sizeof buf, pipe)) out += buf;
   const int status = ::pclose(pipe);
   if (status != 0)
-    throw RunFailure("error: --executor slurm: sbatch refused a job (" + script.string() + " stopped" +
+    throw RunFailure("--executor slurm: sbatch refused a job (" + script.string() + " stopped" +
                      (out.empty() ? "" : " after:\n" + out) + "); its message is above. The scripts stay in " +
                      script.parent_path().string() + " to fix and submit by hand (bash " + script.string() + ")");
   return out;
@@ -87,7 +87,7 @@ void SlurmExecutor::run_cases(CaseBatch &batch, StageContext &ctx) {
   }
   if (!on_path("sbatch"))
     throw InputError(
-        "error: --executor slurm: sbatch was not found on PATH, so nothing was submitted. Run this on a "
+        "--executor slurm: sbatch was not found on PATH, so nothing was submitted. Run this on a "
         "machine of the Slurm cluster (a login node), or submit the scripts written in " +
         files.dir.string() + " from one: bash " + files.submit.string());
   std::cout << submit(files.submit) << std::flush;
@@ -95,7 +95,7 @@ void SlurmExecutor::run_cases(CaseBatch &batch, StageContext &ctx) {
 
 void SlurmExecutor::release() {
   throw InputError(
-      "error: --executor slurm hands out the simulate stage's cases, and this run has none to hand out "
+      "--executor slurm hands out the simulate stage's cases, and this run has none to hand out "
       "(no simulate stage selected); run the other stages without --executor");
 }
 

@@ -2,6 +2,8 @@
 
 #include "core/error.hpp"
 
+#include <algorithm>
+
 namespace spreadmap {
 
 Location Location::of(const std::string &file, const YAML::Node &node) {
@@ -21,7 +23,7 @@ std::string Location::str() const {
 
 void Diagnostics::error(const Location &where, const std::string &key_path, const std::string &what,
                         const std::string &hint) {
-  std::string text = "error: " + where.str() + ": " + (key_path.empty() ? "" : key_path + ": ") + what;
+  std::string text = where.str() + ": " + (key_path.empty() ? "" : key_path + ": ") + what;
   if (!hint.empty()) text += "\n  " + hint;
   errors_.push_back(text);
 }
@@ -31,11 +33,10 @@ void Diagnostics::error(const Location &where, const std::string &key_path, cons
 void Diagnostics::throw_if_any() const {
   if (errors_.empty()) return;
   constexpr std::size_t shown = 50;
-  std::string all;
-  for (std::size_t i = 0; i < errors_.size() && i < shown; ++i) all += (all.empty() ? "" : "\n") + errors_[i];
-  if (errors_.size() > shown)
-    all += "\n... and " + std::to_string(errors_.size() - shown) + " more errors (fix these and run again to see them)";
-  throw InputError(all);
+  const std::vector<std::string> first(errors_.begin(), errors_.begin() + std::min(errors_.size(), shown));
+  throw InputError(first, errors_.size() > shown ? "... and " + std::to_string(errors_.size() - shown) +
+                                                       " more errors (fix these and run again to see them)"
+                                                 : "");
 }
 
 }  // namespace spreadmap

@@ -1,4 +1,5 @@
-// Error messages for user input, in one shape: "error: FILE:LINE:COL: key.path: what\n  hint".
+// Error messages for user input, in one shape: "FILE:LINE:COL: key.path: what\n  hint" (printed after
+// "error: ", core/error.hpp).
 // Validation collects every problem of a file before stopping, so a user fixes them in one go.
 #pragma once
 #include <yaml-cpp/yaml.h>

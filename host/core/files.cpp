@@ -39,7 +39,7 @@ std::string fix_for(const std::error_code &ec) {
 }
 
 [[noreturn]] void fail(const fs::path &path, const std::string &what, const std::error_code &ec) {
-  throw RunFailure("error: cannot write " + path.string() + ": " + what + " (" + ec.message() + ")\n  " + fix_for(ec));
+  throw RunFailure("cannot write " + path.string() + ": " + what + " (" + ec.message() + ")\n  " + fix_for(ec));
 }
 
 // Drawn once per process: it separates processes with the same pid on hosts that share a folder.
@@ -122,7 +122,7 @@ std::string not_a_regular_file(const fs::path &path) {
 
 void write_atomic_with(const fs::path &path, const std::function<void(const fs::path &)> &write) {
   if (const std::string what = not_a_regular_file(path); !what.empty())
-    throw RunFailure("error: cannot write " + path.string() + ": it is " + what +
+    throw RunFailure("cannot write " + path.string() + ": it is " + what +
                      ", which spreadmap never replaces\n  give the path of a regular file, or of one that does not "
                      "exist yet");
   if (path.has_parent_path()) {
@@ -152,9 +152,9 @@ void write_atomic(const fs::path &path, std::string_view content) {
 std::string read_text(const fs::path &path) {
   std::error_code ec;
   // a folder opens as a stream that reads as empty: say what it is instead
-  if (fs::is_directory(path, ec)) throw InputError("error: " + path.string() + " is a directory; give a file");
+  if (fs::is_directory(path, ec)) throw InputError(path.string() + " is a directory; give a file");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("error: cannot read " + path.string() + ": no such file or not readable");
+  if (!in) throw InputError("cannot read " + path.string() + ": no such file or not readable");
   std::ostringstream s;
   s << in.rdbuf();
   return s.str();

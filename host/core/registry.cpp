@@ -102,28 +102,28 @@ const LoadedPlugin &PluginRegistry::load_file(const fs::path &file, const std::s
   lib->load(boost::dll::fs::path(file.string()), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local,
             ec);
   if (ec)
-    throw PluginError("error: cannot load plugin " + file.string() + ": " + ec.message() +
+    throw PluginError("cannot load plugin " + file.string() + ": " + ec.message() +
                       "\n  is it a shared library built for this machine? rebuild it with this SDK");
   if (!lib->has("spreadmap_plugin_v1"))
-    throw PluginError("error: " + file.string() +
+    throw PluginError(file.string() +
                       " is not a spreadmap plugin: it has no entry point 'spreadmap_plugin_v1'\n"
                       "  plugins end with SPREADMAP_PLUGIN(...) or SPREADMAP_CONTACT_PLUGIN(...) and build with "
                       "spreadmap_add_plugin()");
   if (!in_executable_segment(::dlsym(lib->native(), "spreadmap_plugin_v1")))
-    throw PluginError("error: " + file.string() +
+    throw PluginError(file.string() +
                       " exports 'spreadmap_plugin_v1' as data, not as a function: calling it would crash; the "
                       "entry point is the function SPREADMAP_PLUGIN(...) defines: rebuild it with this SDK");
   const auto entry = lib->get<const sm_plugin_v1 *()>("spreadmap_plugin_v1");
   const sm_plugin_v1 *d = entry();
-  if (!d) throw PluginError("error: " + file.string() + ": its entry point returned no descriptor");
+  if (!d) throw PluginError(file.string() + ": its entry point returned no descriptor");
   if (const std::string refusal = abi_refusal(d->abi); !refusal.empty())
-    throw PluginError("error: " + file.string() + " " + refusal);
+    throw PluginError(file.string() + " " + refusal);
   const std::string stem = file.stem().string();
   if (!expected_kind.empty() && expected_kind != d->kind)
-    throw PluginError("error: " + file.string() + " is a " + d->kind + " plugin, found where " + expected_kind +
+    throw PluginError(file.string() + " is a " + d->kind + " plugin, found where " + expected_kind +
                       " plugins are searched: move it to a " + d->kind + "/ folder");
   if (stem != d->name)
-    throw PluginError("error: " + file.string() + " registers the name '" + d->name +
+    throw PluginError(file.string() + " registers the name '" + d->name +
                       "', which differs from its file name: the .so stem and the registered name must be equal");
   libraries_.push_back(lib);
   return loaded_.emplace(key, LoadedPlugin{d, file}).first->second;
@@ -160,7 +160,7 @@ const LoadedPlugin &PluginRegistry::get(const std::string &kind, const std::stri
 PluginInstance::PluginInstance(const LoadedPlugin &plugin, const std::string &params_json, const std::string &where)
     : plugin_(&plugin) {
   sm_error err{0, {0}};
-  const std::string prefix = "error: " + (where.empty() ? std::string() : where + ": ") + plugin.id() + ": ";
+  const std::string prefix = (where.empty() ? std::string() : where + ": ") + plugin.id() + ": ";
   // The ABI says create() reports through err, but a hand-written factory may still throw: the
   // exception must become the same clear error, not terminate the host.
   try {

@@ -86,15 +86,15 @@ Backend choose_backend(const std::string &requested, const DeviceProbe &probe, b
   }
   if (requested == "cuda") {
     if (probe.count == 0)
-      throw InputError("error: scene.backend: cuda was requested, but no CUDA device was found: " + probe.why_none +
+      throw InputError("scene.backend: cuda was requested, but no CUDA device was found: " + probe.why_none +
                        fix);
     if (!engine_ready)
-      throw InputError("error: scene.backend: cuda was requested and CUDA device " + probe.device +
+      throw InputError("scene.backend: cuda was requested and CUDA device " + probe.device +
                        " is present, but this build's engine runs cases on the CPU only" + fix);
     message = "backend: cuda on " + probe.device + " (as requested)";
     return Backend::cuda;
   }
-  throw InputError("error: scene.backend: '" + requested + "' is not a backend\n  use auto, cpu or cuda");
+  throw InputError("scene.backend: '" + requested + "' is not a backend\n  use auto, cpu or cuda");
 }
 
 Backend choose_backend(const std::string &requested, std::string &message) {

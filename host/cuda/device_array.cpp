@@ -9,7 +9,7 @@ namespace spreadmap::cuda {
 void check(int cuda_error, const std::string &doing) {
   if (cuda_error == cudaSuccess) return;
   const auto e = static_cast<cudaError_t>(cuda_error);
-  throw RunFailure("error: " + doing + " on the GPU: CUDA says '" + cudaGetErrorString(e) + "' (" +
+  throw RunFailure(doing + " on the GPU: CUDA says '" + cudaGetErrorString(e) + "' (" +
                    cudaGetErrorName(e) + ")");
 }
 

@@ -7,7 +7,7 @@
 
 namespace spreadmap::cuda {
 
-// Throw RunFailure "error: <doing> on the GPU: CUDA says '...'" for a CUDA error code (0: nothing).
+// Throw RunFailure "<doing> on the GPU: CUDA says '...'" for a CUDA error code (0: nothing).
 void check(int cuda_error, const std::string &doing);
 void *device_alloc(std::size_t bytes);
 void device_free(void *pointer) noexcept;

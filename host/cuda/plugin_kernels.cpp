@@ -15,25 +15,25 @@ void *entry_point(const LoadedPlugin &plugin, const char *symbol) {
   const std::string file = fs::absolute(plugin.file).string();
   void *handle = dlopen(file.c_str(), RTLD_LAZY | RTLD_NOLOAD);
   if (!handle)
-    throw PluginError("error: " + plugin.id() + ": " + file + " is not loaded; load it through the registry first");
+    throw PluginError(plugin.id() + ": " + file + " is not loaded; load it through the registry first");
   void *entry = dlsym(handle, symbol);
   dlclose(handle);  // drops only the reference taken above
   if (!entry || !(plugin.descriptor->backends & SM_BACKEND_CUDA))
-    throw PluginError("error: " + plugin.id() + " cannot run on the GPU: " + file +
+    throw PluginError(plugin.id() + " cannot run on the GPU: " + file +
                       " was built without CUDA kernels (no entry point '" + symbol +
                       "')\n  rebuild it with SPREADMAP_ENABLE_CUDA=ON (nvcc installed), or set scene.backend: cpu");
   return entry;
 }
 
 void check_abi(const LoadedPlugin &plugin, const void *ops, std::uint32_t abi) {
-  if (!ops) throw PluginError("error: " + plugin.id() + ": its CUDA entry point returned no table");
+  if (!ops) throw PluginError(plugin.id() + ": its CUDA entry point returned no table");
   if (abi != SPREADMAP_CUDA_ABI)
-    throw PluginError("error: " + plugin.id() + " has CUDA kernels of ABI " + std::to_string(abi) +
+    throw PluginError(plugin.id() + " has CUDA kernels of ABI " + std::to_string(abi) +
                       ", this host needs " + std::to_string(SPREADMAP_CUDA_ABI) + ": rebuild it with this SDK");
 }
 
 void raise(const std::string &id, const sm_error &err) {
-  throw RunFailure("error: " + id +
+  throw RunFailure(id +
                    " on the GPU: " + (err.text[0] ? err.text : "the kernel launch failed without saying why"));
 }
 
@@ -43,7 +43,7 @@ sm_cuda_launch_v1 on(int device) { return {device, nullptr}; }
 
 ContactKernels contact_kernels(const LoadedPlugin &plugin) {
   if (std::string(plugin.descriptor->kind) != "contact")
-    throw PluginError("error: " + plugin.id() + " is not a contact plugin");
+    throw PluginError(plugin.id() + " is not a contact plugin");
   const auto entry = reinterpret_cast<sm_contact_cuda_entry_v1>(entry_point(plugin, SPREADMAP_CONTACT_CUDA_ENTRY));
   const sm_contact_cuda_ops_v1 *ops = entry();
   check_abi(plugin, ops, ops ? ops->abi : 0);
@@ -52,7 +52,7 @@ ContactKernels contact_kernels(const LoadedPlugin &plugin) {
 
 GeometryKernels spreader_kernels(const LoadedPlugin &plugin) {
   if (std::string(plugin.descriptor->kind) != "spreader")
-    throw PluginError("error: " + plugin.id() + " is not a spreader plugin");
+    throw PluginError(plugin.id() + " is not a spreader plugin");
   const auto entry = reinterpret_cast<sm_spreader_cuda_entry_v1>(entry_point(plugin, SPREADMAP_SPREADER_CUDA_ENTRY));
   const sm_geometry_cuda_ops_v1 *ops = entry();
   check_abi(plugin, ops, ops ? ops->abi : 0);

@@ -256,7 +256,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     for (std::size_t w = 0; w < state.geometries.size(); ++w)
       fits = fits && state.geometries[w].slot.history == laws_.geometries.at(w).second.ops->history;
     if (!fits)
-      throw InputError("error: the rolling spring (rolling_model: epsd) steps on the CPU only: set backend: cpu, "
+      throw InputError("the rolling spring (rolling_model: epsd) steps on the CPU only: set backend: cpu, "
                        "or rolling_model: constant");
     history_ = laws_.pair.ops->history;
     if (state.list_valid && list.start.size() == std::size_t(n_) + 1) {
@@ -353,7 +353,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   template <class F> [[noreturn]] void fail_on_host(State &state, F &&report) {
     sim_to_host(state);
     report();
-    throw RunFailure("error: the GPU run stopped at an invalid state");  // report() throws first
+    throw RunFailure("the GPU run stopped at an invalid state");  // report() throws first
   }
 
   template <class Launch> PassReport run_reported(Launch &&launch, const char *what) {
@@ -592,10 +592,10 @@ std::unique_ptr<engine::StepBackend<Real>> make_resident_stepper(const engine::S
                                                                  int device) {
   if (sim.settings().sleep)
     throw InputError(
-        "error: scene.time.sleep: sleeping particles are not on the GPU backend yet; turn time.sleep off "
+        "scene.time.sleep: sleeping particles are not on the GPU backend yet; turn time.sleep off "
         "or set scene.backend: cpu");
   if (laws.planes.size() != sim.plane_wall_count() || laws.geometries.size() != sim.geometry_count())
-    throw InputError("error: the GPU backend needs the kernels of every plane wall and geometry of the scene");
+    throw InputError("the GPU backend needs the kernels of every plane wall and geometry of the scene");
   return std::make_unique<ResidentStepper<Real>>(std::move(laws), device);
 }
 

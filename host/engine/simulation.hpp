@@ -12,6 +12,7 @@
 // engine/thread_team.hpp); distinct Simulations may run concurrently if the plugins' bound instances
 // allow it.
 #pragma once
+#include <engine/cell_sort.hpp>
 #include <engine/counters.hpp>
 #include <engine/domain.hpp>
 #include <engine/kick_drift.hpp>
@@ -186,7 +187,8 @@ template <class Real = double> class Simulation {
   bool host_changed_ = true;           // the host copy changed since the backend took it
 
   // Scratch (kept to avoid allocation in rebuilds).
-  std::vector<std::uint32_t> perm_, cell_, cell_sorted_, cell_start_, scratch_index_;
+  CellSort cells_;  // the particles sorted into the list's cells
+  std::vector<std::uint32_t> scratch_index_;
   std::vector<std::size_t> owner_cuts_;  // see share_like_pairs
   std::vector<Real> scratch_real_;
   std::vector<Real> inflated_radius_;                     // radii + margin for the geometry search

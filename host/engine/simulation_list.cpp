@@ -1,5 +1,6 @@
 // Simulation's neighbour list: built from the cell grid, and the pairs shared out between threads.
 #include <engine/cell_grid.hpp>
+#include <engine/cell_sort.hpp>
 #include <engine/errors.hpp>
 #include <engine/simulation.hpp>
 #include <engine/neighbour_listing.hpp>
@@ -74,41 +75,23 @@ template <class Real> void Simulation<Real>::rebuild_list() {
                       "diameter + skin ({:.4g} m); widen the domain or lower the skin",
                       "xyz"[a], state_.domain.length(a), reach));
   const CellGrid<Real> grid = make_cell_grid<Real>(state_.domain, lo, hi, reach, n);
-  const std::size_t n_cells = grid.count();
 
-  // Stable counting sort by cell.
-  cell_.resize(n);
-  parallel_for(this_thread_team(), n, [&](long long i) { cell_[i] = grid.cell_of(p.x[i], p.y[i], p.z[i]); });
-  cell_start_.assign(n_cells + 1, 0);
-  for (std::size_t i = 0; i < n; ++i) ++cell_start_[cell_[i] + 1];
-  for (std::size_t c = 0; c < n_cells; ++c) cell_start_[c + 1] += cell_start_[c];
-  perm_.resize(n);
-  cell_sorted_.resize(n);
-  {
-    scratch_index_.assign(cell_start_.begin(), cell_start_.end() - 1);  // next free slot per cell
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::uint32_t slot = scratch_index_[cell_[i]]++;
-      perm_[slot] = static_cast<std::uint32_t>(i);
-      cell_sorted_[slot] = cell_[i];
-    }
-  }
-  bool identity = true;
-  for (std::size_t i = 0; i < n && identity; ++i) identity = perm_[i] == i;
-  if (!identity) {
+  cells_.sort(grid, p.x.data(), p.y.data(), p.z.data(), n);
+  if (!cells_.unmoved()) {
     // Reference positions are set below; cleared accumulators are all zero: neither needs moving.
     const bool zero_forces = forces_zeroed_;
     p.for_each_real([&](std::vector<Real> &c) {
       if (&c == &p.x0 || &c == &p.y0 || &c == &p.z0) return;
       if (zero_forces && (&c == &p.fx || &c == &p.fy || &c == &p.fz || &c == &p.tx || &c == &p.ty || &c == &p.tz))
         return;
-      gather(c, perm_, scratch_real_);
+      gather(c, cells_.order, scratch_real_);
     });
-    p.for_each_index([&](std::vector<std::uint32_t> &c) { gather(c, perm_, scratch_index_); });
+    p.for_each_index([&](std::vector<std::uint32_t> &c) { gather(c, cells_.order, scratch_index_); });
     state_.for_each_wall_slot([&](WallSlot<Real> &s) {
-      if (s.history) gather(s.hist, perm_, scratch_real_, s.history);
+      if (s.history) gather(s.hist, cells_.order, scratch_real_, s.history);
     });
   }
-  state_.list.build(p, grid, cell_start_, cell_sorted_, state_.domain, Real(list_skin), law_history(state_.pair_law),
+  state_.list.build(p, grid, cells_.start, cells_.sorted, state_.domain, Real(list_skin), law_history(state_.pair_law),
                     state_.settings.pairs_once, state_.settings.sleep && asleep_ > 0 ? p.mobile.data() : nullptr);
   if (state_.settings.sleep) find_border();
   asleep_at_build_ = asleep_;

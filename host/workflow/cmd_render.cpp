@@ -34,12 +34,12 @@ int cmd_render(int argc, char **argv) {
     return 0;
   c.apply();
   if (vm.count("width") && (width < 200 || width > 16384))
-    throw InputError("error: --width " + std::to_string(width) + ": use 200 to 16384 pixels");
+    throw InputError("--width " + std::to_string(width) + ": use 200 to 16384 pixels");
   if (!vector.empty() && vector != "pdf" && vector != "svg" && vector != "eps")
-    throw InputError("error: --vector " + vector + ": use pdf, svg or eps");
+    throw InputError("--vector " + vector + ": use pdf, svg or eps");
   figures::use_style({true, width, vector, false});
   if (!figures::available())
-    throw InputError("error: render: this build has no VTK (configure with SPREADMAP_ENABLE_VTK=ON)");
+    throw InputError("render: this build has no VTK (configure with SPREADMAP_ENABLE_VTK=ON)");
   const auto particles = read_particle_file(state);
   if (scene_file.empty() && fs::exists(fs::path(state).parent_path() / "scene.json"))
     scene_file = (fs::path(state).parent_path() / "scene.json").string();
@@ -61,7 +61,7 @@ int cmd_render(int argc, char **argv) {
   const fs::path case_json = fs::path(state).parent_path() / "case.json";
   if (fs::exists(case_json)) record = nlohmann::json::parse(read_text(case_json));
   figures::snapshot(particles, scene, record, fs::path(out), title);
-  if (!fs::exists(out)) throw RunFailure("error: render: " + out + " was not written (see the warning above)");
+  if (!fs::exists(out)) throw RunFailure("render: " + out + " was not written (see the warning above)");
   std::cout << out << "\n";
   return 0;
 }

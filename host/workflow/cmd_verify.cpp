@@ -23,7 +23,7 @@ int cmd_verify(int argc, char **argv) {
   cli::po::variables_map vm;
   if (!cli::parse(argc, argv, d, p, vm, "verify WORKFLOW [--out DIR] [--force] [--jobs N]")) return 0;
   c.apply();
-  if (opt.jobs < 1) throw InputError("error: --jobs must be at least 1");
+  if (opt.jobs < 1) throw InputError("--jobs must be at least 1");
   opt.quiet = c.quiet;
   opt.out = out;
   opt.only = {"verify"};

@@ -58,7 +58,7 @@ int run_workflow(const fs::path &file, const RunOptions &given, PluginRegistry &
     bool found = false;
     for (const auto &s : v.wf.stages) found |= iequals(s.kind, only);
     if (!found)
-      throw InputError("error: --only " + only + ": this workflow has no such stage (stages: " + [&] {
+      throw InputError("--only " + only + ": this workflow has no such stage (stages: " + [&] {
         std::vector<std::string> k;
         for (auto &s : v.wf.stages) k.push_back(s.kind);
         return join(k);

@@ -14,8 +14,8 @@ if(cluster_ready AND TARGET spreadmap_cluster)
   find_program(SPREADMAP_MPIEXEC NAMES mpirun mpiexec)
   function(spreadmap_cluster_test name)
     cmake_parse_arguments(C "" "TIMEOUT" "SOURCES" ${ARGN})
-    spreadmap_test(cluster ${name} SOURCES ${C_SOURCES} ${PROJECT_SOURCE_DIR}/tests/workflow/process.cpp
-      LIBS nlohmann_json::nlohmann_json TIMEOUT ${C_TIMEOUT})
+    spreadmap_test(cluster ${name} SOURCES ${C_SOURCES}
+      LIBS spreadmap_test_process nlohmann_json::nlohmann_json TIMEOUT ${C_TIMEOUT})
     add_dependencies(test_cluster_${name} ${cluster_needs})
     target_compile_definitions(test_cluster_${name} PRIVATE SPREADMAP_MPIEXEC="${SPREADMAP_MPIEXEC}")
   endfunction()

@@ -31,12 +31,20 @@ spreadmap_fixture_plugin(kind_mismatch kind_mismatch DEFINES FIXTURE_KIND="sprea
 spreadmap_fixture_plugin(name_mismatch name_mismatch REGISTERS other_name)
 spreadmap_fixture_plugin(refusing refusing DEFINES FIXTURE_FACTORY=1)
 spreadmap_fixture_plugin(throwing throwing DEFINES FIXTURE_FACTORY=2)
+# spreadmap_older_abi_plugin(<target> KIND <kind> NAME <stem> MINOR <n> SOURCES ... [LIBS ...]): a real
+# plugin's sources built for an older minor ABI of this major, in <fixtures>/abi_10_<n>/<kind>/.
+function(spreadmap_older_abi_plugin t)
+  cmake_parse_arguments(F "" "KIND;NAME;MINOR" "SOURCES;LIBS" ${ARGN})
+  add_library(${t} MODULE ${F_SOURCES})
+  target_link_libraries(${t} PRIVATE spreadmap_sdk ${F_LIBS})
+  target_compile_definitions(${t} PRIVATE SPREADMAP_TARGET_ABI_MINOR=${F_MINOR})
+  set_target_properties(${t} PROPERTIES PREFIX "" OUTPUT_NAME ${F_NAME} CXX_VISIBILITY_PRESET hidden
+    LIBRARY_OUTPUT_DIRECTORY ${SPREADMAP_FIXTURE_DIR}/abi_10_${F_MINOR}/${F_KIND})
+endfunction()
+
 # A real law built for ABI 10.0, whose ops table ends before 10.1's history_of: this host loads it.
-add_library(fixture_abi_10_0 MODULE ${PROJECT_SOURCE_DIR}/plugins/contact/hooke_history/hooke_history.cpp)
-target_link_libraries(fixture_abi_10_0 PRIVATE spreadmap_sdk)
-target_compile_definitions(fixture_abi_10_0 PRIVATE SPREADMAP_TARGET_ABI_MINOR=0)
-set_target_properties(fixture_abi_10_0 PROPERTIES PREFIX "" OUTPUT_NAME hooke_history CXX_VISIBILITY_PRESET hidden
-  LIBRARY_OUTPUT_DIRECTORY ${SPREADMAP_FIXTURE_DIR}/abi_10_0/contact)
+spreadmap_older_abi_plugin(fixture_abi_10_0 KIND contact NAME hooke_history MINOR 0
+  SOURCES ${PROJECT_SOURCE_DIR}/plugins/contact/hooke_history/hooke_history.cpp)
 set_property(GLOBAL APPEND PROPERTY SPREADMAP_FIXTURE_TARGETS fixture_abi_10_0)
 get_property(SPREADMAP_FIXTURE_TARGETS GLOBAL PROPERTY SPREADMAP_FIXTURE_TARGETS)
 

@@ -1,4 +1,4 @@
-// Diagnostics: one shape for every user-facing error, "error: FILE:LINE:COL: key.path: what" with a
+// Diagnostics: one shape for every user-facing error, "FILE:LINE:COL: key.path: what" with a
 // 1-based line and column (yaml-cpp's marks are 0-based), and an indented hint line.
 #include <gtest/gtest.h>
 
@@ -35,14 +35,16 @@ TEST(CoreDiagnostics, MessageShape) {
   diag.error({"wf.yaml", 2, 1}, "", "a workflow is a YAML mapping");
   ASSERT_EQ(diag.errors().size(), 2u);
   EXPECT_EQ(diag.errors()[0],
-            "error: wf.yaml:4:7: scene.powder.diameter: outside [1e-06, 0.1] m\n  diameter: sphere diameter");
-  EXPECT_EQ(diag.errors()[1], "error: wf.yaml:2:1: a workflow is a YAML mapping");
+            "wf.yaml:4:7: scene.powder.diameter: outside [1e-06, 0.1] m\n  diameter: sphere diameter");
+  EXPECT_EQ(diag.errors()[1], "wf.yaml:2:1: a workflow is a YAML mapping");
   try {
     diag.throw_if_any();
     FAIL() << "no error";
   } catch (const sm::InputError &e) {
     EXPECT_EQ(std::string(e.what()), diag.errors()[0] + "\n" + diag.errors()[1]);
     EXPECT_EQ(e.exit_code, 2);
+    EXPECT_EQ(sm::printed(e), "error: " + diag.errors()[0] + "\nerror: " + diag.errors()[1] + "\n")
+        << "each message is printed after one 'error: ', the hint on its own indented line";
   }
 }
 
@@ -55,12 +57,29 @@ TEST(CoreDiagnostics, ThousandsOfErrorsShowTheFirstFiftyAndTheCount) {
     FAIL() << "no error";
   } catch (const sm::InputError &e) {
     const std::string text = e.what();
-    EXPECT_NE(text.find("error: wf.yaml:50:1: key49: unknown key\n"), std::string::npos);
+    EXPECT_NE(text.find("wf.yaml:50:1: key49: unknown key\n"), std::string::npos);
     EXPECT_EQ(text.find("key50:"), std::string::npos) << "the 51st is not shown";
     const std::string tail = "\n... and 9950 more errors (fix these and run again to see them)";
     ASSERT_GE(text.size(), tail.size());
     EXPECT_EQ(text.substr(text.size() - tail.size()), tail);
+    const std::string shown = sm::printed(e);
+    std::size_t prefixed = 0;
+    for (std::size_t at = shown.find("error: "); at != std::string::npos; at = shown.find("error: ", at + 1)) ++prefixed;
+    EXPECT_EQ(prefixed, 50u) << "one 'error: ' per message shown, none before the count of the rest";
+    EXPECT_EQ(shown.substr(shown.size() - tail.size()), tail.substr(1) + "\n");
   }
+}
+
+// A message carries no prefix (it is also quoted inside warnings and other messages); printing adds
+// it once, to errors of every kind.
+TEST(CoreDiagnostics, PrintingAddsTheErrorPrefixOnce) {
+  EXPECT_EQ(sm::printed(sm::RunFailure("cannot write a.csv: disk full\n  free some space")),
+            "error: cannot write a.csv: disk full\n  free some space\n");
+  EXPECT_EQ(sm::printed(std::runtime_error("bad_alloc")), "error: bad_alloc\n");
+  EXPECT_EQ(sm::printed(sm::Interrupted("interrupted: finished cases are kept")), "interrupted: finished cases are kept\n")
+      << "a stop the user asked for is no error";
+  EXPECT_EQ(sm::printed(sm::InputError({"a.yaml:1:1: x: unknown key", "a.yaml:2:1: y: unknown key"}, "")),
+            "error: a.yaml:1:1: x: unknown key\nerror: a.yaml:2:1: y: unknown key\n");
 }
 
 TEST(CoreDiagnostics, ExitCodesAreDistinct) {

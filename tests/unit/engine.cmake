@@ -8,7 +8,7 @@ spreadmap_test(unit engine_kick_drift
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_kick_drift_test.cpp
   LIBS spreadmap_engine)
 spreadmap_test(unit engine_thread_team
-  SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_thread_team_test.cpp
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_thread_team_test.cpp ${CMAKE_CURRENT_LIST_DIR}/engine_cell_sort_test.cpp
   LIBS spreadmap_engine)
 spreadmap_test(unit engine_plugin_law
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_plugin_law_test.cpp

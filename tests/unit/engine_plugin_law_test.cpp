@@ -54,7 +54,7 @@ TEST(PluginLaw, BindsWithUnitsAndDefaults) {
 
 TEST(PluginLaw, RefusesBadParametersNamingTheKey) {
   const auto misspelt = error_of<sm::InputError>([] { load_contact_law("hooke_slider", {{"restitutoin", 0.5}}); });
-  EXPECT_TRUE(contains(misspelt, "error: load_contact_law(\"hooke_slider\"): params.restitutoin: unknown key"))
+  EXPECT_TRUE(contains(misspelt, "load_contact_law(\"hooke_slider\"): params.restitutoin: unknown key"))
       << misspelt;
   EXPECT_TRUE(contains(misspelt, "did you mean 'restitution'?")) << misspelt;
 

@@ -55,6 +55,48 @@ TEST_F(LayerPlugin, DescribesItself) {
   EXPECT_STREQ(plugin_->params[5].unit, "m");
 }
 
+// What the plugin declares (ABI 10.2: `gives`, the metrics a stage may count on) is what it gives, with
+// the same units, whatever the switches and whether or not the region holds powder; the switched-on
+// metrics come on top. The declaration holds the stages' contract: V_s in m^2/s and R_q in m.
+TEST_F(LayerPlugin, DeclaresExactlyTheMetricsEveryEvaluationGivesWithTheirUnits) {
+  ASSERT_NE(ops_->gives, nullptr);
+  ASSERT_EQ(ops_->n_gives, 11u);
+  const double r = 50e-6, x = 0.5e-3, y = 0.5e-3, z = r;
+  for (const bool empty : {false, true})
+    for (const char *params : {R"({"grid": 0, "exclude_loose": true})",
+                               R"({"grid": 0, "exclude_loose": true, "segregation": true, "depth_profile": true,
+                                   "depth_slice": 25e-6, "top_thickness": 0})"}) {
+      sm_layer_input_v1 in{};
+      in.n = empty ? 0 : 1;
+      in.x = &x, in.y = &y, in.z = &z, in.r = &r;
+      in.region[1] = in.region[3] = 1e-3;
+      in.speed = 0.1, in.gap = 200e-6;
+      sm_error err{};
+      void *self = plugin_->create(params, &err);
+      ASSERT_NE(self, nullptr) << err.text;
+      const char *text = ops_->evaluate(self, &in, &err);
+      ASSERT_NE(text, nullptr) << err.text;
+      const auto j = nlohmann::json::parse(text);
+      for (uint32_t k = 0; k < ops_->n_gives; ++k) {
+        const sm_metric_v1 &m = ops_->gives[k];
+        ASSERT_TRUE(j["metrics"].contains(m.name)) << m.name << " declared, not given (" << params << ")";
+        EXPECT_EQ(j["units"][m.name].get<std::string>(), m.unit) << m.name;
+        EXPECT_GT(std::strlen(m.doc), 10u) << m.name;
+      }
+      if (std::string(params).find("segregation") == std::string::npos) {
+        EXPECT_EQ(j["metrics"].size(), ops_->n_gives) << "without switches it gives nothing undeclared: " << text;
+      }
+      plugin_->destroy(self);
+    }
+  const auto unit_of = [&](const std::string &name) -> std::string {
+    for (uint32_t k = 0; k < ops_->n_gives; ++k)
+      if (name == ops_->gives[k].name) return ops_->gives[k].unit;
+    return "(not declared)";
+  };
+  EXPECT_EQ(unit_of("vs"), "m^2/s");
+  EXPECT_EQ(unit_of("rq"), "m");
+}
+
 // Packing against depth appears only when asked for: its scalars with units, the profile beside the
 // metrics. One 100 um sphere on the substrate in 25 um slices: the slice [0, 25 um] holds the cap of
 // height 25 um, pi h^2 (3 r - h) / 3 with h = 25 um, r = 50 um.

@@ -1,8 +1,16 @@
-# host/workflow: the local executor's pool of case threads, with stand-ins for the cases; the typed
+# host/workflow: the local executor's pool of case threads, with stand-ins for the cases; the plugins
+# the stages choose by capability; the typed
 # scene, the function that sets design variables on it and the spreader's span of the width; the
 # powder's size keys, with real plugins.
 spreadmap_test(unit workflow SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_local_executor_test.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/workflow_replicates_test.cpp LIBS spreadmap_workflow)
+  ${CMAKE_CURRENT_LIST_DIR}/workflow_replicates_test.cpp ${CMAKE_CURRENT_LIST_DIR}/workflow_plugin_needs_test.cpp
+  LIBS spreadmap_workflow)
+# The stages' capabilities (plugin_needs): the real plugins, and the layer metrics built for ABI 10.1,
+# which loads but declares no metrics.
+spreadmap_older_abi_plugin(fixture_metrics_abi_10_1 KIND metrics NAME layer MINOR 1
+  SOURCES ${PROJECT_SOURCE_DIR}/plugins/metrics/layer/layer.cpp LIBS layer_core)
+add_dependencies(test_unit_workflow fixture_metrics_abi_10_1 plugin_metrics_layer plugin_surrogate_gp plugin_surrogate_bpnn)
+target_compile_definitions(test_unit_workflow PRIVATE SPREADMAP_FIXTURE_DIR="${SPREADMAP_FIXTURE_DIR}")
 spreadmap_test(unit scene_model SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_scene_model_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/workflow_spreader_span_test.cpp LIBS spreadmap_workflow)
 spreadmap_test(unit powder SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_powder_test.cpp LIBS spreadmap_workflow)

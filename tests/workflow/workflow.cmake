@@ -16,8 +16,7 @@ endforeach()
 
 function(spreadmap_workflow_test name)
   cmake_parse_arguments(W "" "TIMEOUT" "SOURCES" ${ARGN})
-  spreadmap_test(workflow ${name} SOURCES ${W_SOURCES} ${CMAKE_CURRENT_LIST_DIR}/process.cpp
-    LIBS spreadmap_sdk TIMEOUT ${W_TIMEOUT})
+  spreadmap_test(workflow ${name} SOURCES ${W_SOURCES} LIBS spreadmap_test_process spreadmap_sdk TIMEOUT ${W_TIMEOUT})
   add_dependencies(test_workflow_${name} ${workflow_needs})
   target_compile_definitions(test_workflow_${name} PRIVATE SPREADMAP_FIXTURE_DIR="${SPREADMAP_FIXTURE_DIR}")
 endfunction()

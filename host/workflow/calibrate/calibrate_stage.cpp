@@ -48,8 +48,8 @@ class CalibrateStage : public Stage {
     try {
       calibration_ = calibrate::read_calibration_file(wf.resolve(name), registry);
     } catch (const InputError &e) {
-      diag.error(Location::of(file, entry.config["file"]), "calibrate.file",
-                 "the calibration file has errors:\n" + std::string(e.what()));
+      diag.error(Location::of(file, entry.config["file"]), "calibrate.file", "the calibration file has errors (below)");
+      for (const auto &m : e.messages) diag.error(m);
       return;
     }
     for (const auto &t : calibration_.tests)
@@ -75,7 +75,7 @@ class CalibrateStage : public Stage {
     const fs::path result = run.root() / "calibrate" / "calibration.json";
     if (!fs::exists(result))
       throw InputError(
-          fmt::format("error: {}: the calibrate stage has not run yet ({} is missing), and apply: true "
+          fmt::format("{}: the calibrate stage has not run yet ({} is missing), and apply: true "
                       "makes the later stages need it; run the workflow without --only, or --only calibrate",
                       calibration_.file.string(), result.string()));
     const auto j = nlohmann::json::parse(read_text(result));

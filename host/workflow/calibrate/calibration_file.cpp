@@ -7,6 +7,7 @@
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 #include "workflow/scene/scene_build.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 #include "workflow/file/workflow.hpp"
 
 namespace spreadmap::calibrate {
@@ -21,7 +22,8 @@ constexpr sm_param_v1 top_params[] = {
     sm::table("parameters", "contact-law keys to identify, each with its range [lo, hi]"),
     sm::table("design", "the simulations: levels per parameter (full factorial)"),
     sm::table("tests", "the bulk tests: a list of {scene, measure, angle, uncertainty}"),
-    sm::table("model", "the surrogate plugin (use: NAME) and its parameters; default gp"),
+    sm::table("model", "the surrogate plugin (use: NAME) and its parameters; default: the first that gives a "
+             "predictive standard deviation"),
 };
 
 constexpr sm_param_v1 design_params[] = {
@@ -83,8 +85,8 @@ std::vector<SceneLaw> read_bulk_tests(YAML::Node root, YAML::Node tests, const s
       const auto scene = scene::load_scene(t.scene, registry);
       laws.push_back({&registry.get("contact", scene.scene.law), scene.scene.pair_law});
     } catch (const InputError &e) {
-      diag.error(Location::of(file, tests[k]["scene"]), key + ".scene",
-                 "the scene file has errors:\n" + std::string(e.what()));
+      diag.error(Location::of(file, tests[k]["scene"]), key + ".scene", "the scene file has errors (below)");
+      for (const auto &m : e.messages) diag.error(m);
       continue;
     }
     c.tests.push_back(std::move(t));
@@ -137,12 +139,14 @@ void read_parameter_ranges(YAML::Node root, YAML::Node params, const std::vector
     read_parameter_range(it->first.as<std::string>(), it->first, it->second, laws, file, c, diag);
 }
 
-// The surrogate: model.use (default gp) and its parameters, checked by its schema.
+// The surrogate: model.use and its parameters, checked by its schema. By default the first that gives
+// a predictive standard deviation: the fit weighs each test's misfit by it (docs/calibration.md).
 void read_surrogate(YAML::Node root, YAML::Node model, const std::string &file, CalibrationFile &c,
                     PluginRegistry &registry, Diagnostics &diag) {
-  c.model = model && model["use"] ? model["use"].as<std::string>() : "gp";
   try {
-    const auto &plugin = registry.get("surrogate", c.model);
+    const auto &plugin = model && model["use"] ? registry.get("surrogate", model["use"].as<std::string>())
+                                               : surrogate_with_std(registry, file + ": the calibration");
+    c.model = plugin.descriptor->name;
     c.model_params =
         validate_params(SchemaView::of(*plugin.descriptor), model ? model : YAML::Node(), file, "model", diag, {"use"});
   } catch (const PluginError &e) {

@@ -35,7 +35,7 @@ struct CalibrationFile {
   std::vector<ParameterRange> parameters;  // keys of the scenes' contact law
   int levels = 3;                          // full factorial: levels^parameters runs per test
   std::vector<BulkTest> tests;
-  std::string model = "gp";
+  std::string model;            // surrogate plugin
   nlohmann::json model_params;  // validated SI, every key
 };
 

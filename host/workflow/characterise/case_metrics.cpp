@@ -13,6 +13,7 @@
 #include "workflow/spreading/substrate_roughness.hpp"
 #include "workflow/spreading/case_setup.hpp"
 #include "workflow/cases/case_runner.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 #include "workflow/spreading/layer_feed.hpp"
 #include "workflow/spreading/machine_layout.hpp"
 #include "workflow/spreading/powder_sizes.hpp"
@@ -22,7 +23,8 @@ namespace {
 
 // The stage's own settings; the rest of its mapping are the metrics plugin's parameters.
 constexpr sm_param_v1 characterise_schema[] = {
-    text("use", "layer", "the metrics plugin (spreadmap plugins --kind metrics); its parameters sit beside these"),
+    text("use", "", "the metrics plugin (spreadmap plugins --kind metrics; default: the first that declares V_s and "
+                    "R_q); its parameters sit beside these"),
     table("region", "the measured area {x: [14 mm, 24 mm], y: [0 mm, 2.5 mm]} (default: the spreader's path)"),
     table("render", "true, false or the figure's settings {width: 1920, vector: pdf}"),
 };
@@ -123,10 +125,11 @@ CharacteriseSettings read_characterise_settings(const Workflow &wf, const YAML::
                                                 PluginRegistry &registry, Diagnostics &diag) {
   CharacteriseSettings s;
   const std::string file = wf.file.string();
-  s.request.plugin = cfg["use"] && cfg["use"].IsScalar() ? cfg["use"].Scalar() : "layer";
   const LoadedPlugin *plugin = nullptr;
   try {
-    plugin = &registry.get("metrics", s.request.plugin);
+    plugin = cfg["use"] && cfg["use"].IsScalar() ? &registry.get("metrics", cfg["use"].Scalar())
+                                                 : &contract_metrics_plugin(registry, "the characterise stage");
+    s.request.plugin = plugin->descriptor->name;
   } catch (const std::exception &e) {
     diag.error(Location::of(file, cfg["use"] ? cfg["use"] : cfg), "characterise.use", e.what());
   }

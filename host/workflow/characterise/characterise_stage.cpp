@@ -57,7 +57,7 @@ class CharacteriseStage : public Stage {
     figures::use_style(settings_.style);
     const nlohmann::json manifest = ctx.run.manifest();
     if (!manifest.contains("cases") || manifest["cases"].empty())
-      throw InputError("error: characterise: " + ctx.run.root().string() +
+      throw InputError("characterise: " + ctx.run.root().string() +
                        " has no simulated cases; run the simulate stage first (spreadmap run " + ctx.wf.file.string() +
                        ")");
     const std::string settings = settings_hash(settings_);

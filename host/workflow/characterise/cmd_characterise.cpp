@@ -11,6 +11,7 @@
 #include "core/units.hpp"
 #include "workflow/stage/command_line.hpp"
 #include "workflow/stage/commands.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 #include "workflow/characterise/layer_eval.hpp"
 #include "core/units.hpp"
 
@@ -21,7 +22,7 @@ double length_option(const std::string &text, const std::string &what, const std
   try {
     return parse_in(text, unit);
   } catch (const std::exception &e) {
-    throw InputError("error: " + what + " " + text + ": " + e.what());
+    throw InputError(what + " " + text + ": " + e.what());
   }
 }
 
@@ -31,7 +32,7 @@ std::string cell(const nlohmann::json &v) { return v.is_number() ? fmt::format("
 int cmd_characterise(int argc, char **argv) {
   namespace po = boost::program_options;
   po::options_description d("characterise options");
-  std::string state, region, grid, speed, gap, periodic, vti, format = "table", plugin = "layer";
+  std::string state, region, grid, speed, gap, periodic, vti, format = "table", plugin;
   cli::Common c;
   d.add_options()("state", po::value(&state)->required(),
                   "particle file: spreadmap .vtp or CSV with x, y, z, radius [m]")(
@@ -42,7 +43,7 @@ int cmd_characterise(int argc, char **argv) {
       "gap", po::value(&gap), "spreader gap, e.g. 0.5mm (gives the packing over the gap)")(
       "periodic-y", po::value(&periodic), "width of a periodic strip [0, W] in y: periodic images count")(
       "heightmap", po::value(&vti), "also write the height map as VTK ImageData (.vti)")(
-      "metrics", po::value(&plugin)->default_value("layer"), "metrics plugin")(
+      "metrics", po::value(&plugin), "metrics plugin (default: the first that gives V_s and R_q)")(
       "format", po::value(&format)->default_value("table"), "table | csv | json");
   c.add(d);
   po::positional_options_description p;
@@ -54,14 +55,15 @@ int cmd_characterise(int argc, char **argv) {
     return 0;
   c.apply();
   if (format != "table" && format != "csv" && format != "json")
-    throw InputError("error: --format " + format + ": use table, csv or json");
+    throw InputError("--format " + format + ": use table, csv or json");
 
   LayerRequest rq;
-  rq.plugin = plugin;
+  rq.plugin = plugin.empty() ? contract_metrics_plugin(PluginRegistry::global(), "spreadmap characterise").descriptor->name
+                             : plugin;
   {
     Diagnostics diag;  // the plugin's defaults; --grid overrides its cell
-    const LoadedPlugin &p = PluginRegistry::global().get("metrics", plugin);
-    rq.params = validate_params(SchemaView::of(*p.descriptor), YAML::Node(), "<defaults>", "--metrics " + plugin, diag);
+    const LoadedPlugin &p = PluginRegistry::global().get("metrics", rq.plugin);
+    rq.params = validate_params(SchemaView::of(*p.descriptor), YAML::Node(), "<defaults>", "--metrics " + rq.plugin, diag);
     diag.throw_if_any();
   }
   rq.region = parse_region(region, "--region");

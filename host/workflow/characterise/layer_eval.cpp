@@ -51,7 +51,7 @@ LayerResult characterise_layer(PluginRegistry &registry, const LayerRequest &rq,
 
 engine::ParticleSet read_particle_file(const std::filesystem::path &file) {
   if (!std::filesystem::exists(file))
-    throw InputError("error: " + file.string() +
+    throw InputError(file.string() +
                      ": no such file (give a spreadmap .vtp state or a CSV with x, y, z, radius columns)");
   const std::string ext = file.extension().string();
   try {
@@ -60,29 +60,29 @@ engine::ParticleSet read_particle_file(const std::filesystem::path &file) {
   } catch (const InputError &) {
     throw;
   } catch (const std::exception &e) {
-    throw InputError(std::string("error: ") + e.what());
+    throw InputError(std::string(e.what()));
   }
-  throw InputError("error: " + file.string() + ": unknown particle file type '" + ext +
+  throw InputError(file.string() + ": unknown particle file type '" + ext +
                    "' (give a .vtp written by spreadmap or a .csv with x, y, z, radius columns in metres)");
 }
 
 static std::pair<double, double> parse_range(const std::string &text, const std::string &what) {
   const auto colon = text.find(':');
   if (colon == std::string::npos)
-    throw InputError("error: " + what + ": '" + text + "' is not a range; write LO:HI, e.g. 14mm:24mm");
+    throw InputError(what + ": '" + text + "' is not a range; write LO:HI, e.g. 14mm:24mm");
   try {
     const double lo = parse_in(text.substr(0, colon), "m"), hi = parse_in(text.substr(colon + 1), "m");
     if (!(hi > lo)) throw std::invalid_argument("the upper bound must be above the lower one");
     return {lo, hi};
   } catch (const std::invalid_argument &e) {
-    throw InputError("error: " + what + ": '" + text + "': " + e.what());
+    throw InputError(what + ": '" + text + "': " + e.what());
   }
 }
 
 Region parse_region(const std::string &text, const std::string &what) {
   const auto comma = text.find(',');
   if (comma == std::string::npos)
-    throw InputError("error: " + what + ": '" + text + "': write X0:X1,Y0:Y1, e.g. 14mm:24mm,0:2.5mm");
+    throw InputError(what + ": '" + text + "': write X0:X1,Y0:Y1, e.g. 14mm:24mm,0:2.5mm");
   const auto [x0, x1] = parse_range(text.substr(0, comma), what);
   const auto [y0, y1] = parse_range(text.substr(comma + 1), what);
   return {x0, x1, y0, y1};

@@ -23,7 +23,7 @@ struct Region {
 };
 
 struct LayerRequest {
-  std::string plugin = "layer";
+  std::string plugin;  // metrics plugin; empty: the first that declares the metric contract
   nlohmann::json params = nlohmann::json::object();  // validated SI values of the plugin's schema
   Region region;
   double substrate_z = 0;

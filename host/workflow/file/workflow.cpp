@@ -16,12 +16,12 @@ YAML::Node load_yaml(const fs::path &file) {
     return YAML::Load(text);
   } catch (const YAML::DeepRecursion &e) {  // yaml-cpp calls it "bad file"
     Location at{file.string(), e.mark.line + 1, e.mark.column + 1};
-    throw InputError("error: " + at.str() + ": YAML nested more than " + std::to_string(e.depth()) +
+    throw InputError(at.str() + ": YAML nested more than " + std::to_string(e.depth()) +
                      " levels deep here\n  no spreadmap file nests more than a few levels: close the brackets or "
                      "braces opened before this point");
   } catch (const YAML::Exception &e) {
     Location at{file.string(), e.mark.line + 1, e.mark.column + 1};
-    throw InputError("error: " + at.str() + ": YAML syntax: " + e.msg +
+    throw InputError(at.str() + ": YAML syntax: " + e.msg +
                      "\n  check indentation, colons and brackets on this line or the one before");
   }
 }
@@ -129,7 +129,7 @@ Workflow load_workflow(const fs::path &file, const std::vector<std::string> &sta
   wf.file = file;
   wf.dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
   if (std::error_code ec; fs::is_directory(file, ec))
-    throw InputError("error: " + file.string() + " is a directory; give a workflow .yaml file");
+    throw InputError(file.string() + " is a directory; give a workflow .yaml file");
   wf.root = load_yaml(file);
   const std::string f = file.string();
   Diagnostics diag;

@@ -38,7 +38,7 @@ struct Workflow {
   }
 };
 
-// Parses a YAML file; syntax errors become InputError "error: FILE:LINE:COL: ...".
+// Parses a YAML file; syntax errors become InputError "FILE:LINE:COL: ...".
 YAML::Node load_yaml(const fs::path &file);
 // Throws InputError listing every problem of the file's shape; a stage is one of `stage_names`
 // (the runner passes stage_names() of workflow/stage_table.hpp).

@@ -23,7 +23,7 @@ analysis::ModelFile read_model(const std::string &path) {
   try {
     return analysis::load_model_json(path);
   } catch (const std::exception &e) {
-    throw InputError(std::string("error: ") + e.what() + " (give a model.json written by spreadmap train)");
+    throw InputError(std::string(e.what()) + " (give a model.json written by spreadmap train)");
   }
 }
 
@@ -33,7 +33,7 @@ std::vector<double> roughness_list(const std::string &text) {
     try {
       out.push_back(parse_in(item, "m"));
     } catch (const std::exception &e) {
-      throw InputError("error: --rq-max " + item + ": " + e.what() + " (e.g. 110um)");
+      throw InputError("--rq-max " + item + ": " + e.what() + " (e.g. 110um)");
     }
   }
   return out;
@@ -107,7 +107,7 @@ int cmd_query(int argc, char **argv) {
   const auto file = read_model(model);
   auto &registry = PluginRegistry::global();
   if (vm.count("best")) {
-    if (rq_max.empty()) throw InputError("error: --best needs --rq-max, e.g. --rq-max 110um");
+    if (rq_max.empty()) throw InputError("--best needs --rq-max, e.g. --rq-max 110um");
     MapRequest rq;
     if (!grid.empty()) rq.points = parse_grid_points(grid, mapped_inputs(file));
     rq.rq_max = roughness_list(rq_max);
@@ -116,32 +116,32 @@ int cmd_query(int argc, char **argv) {
     for (const auto &o : map.optima) print_optimum(o, file, map);
     return 0;
   }
-  if (at.empty()) throw InputError("error: query: give --at NAME=VALUE,... or --best --rq-max VALUE");
+  if (at.empty()) throw InputError("query: give --at NAME=VALUE,... or --best --rq-max VALUE");
   Eigen::MatrixXd x(1, Eigen::Index(file.inputs.size()));
   x.setConstant(std::nan(""));
   std::vector<std::string> names;
   for (const auto &v : file.inputs) names.push_back(v.name);
   for (const auto &item : split_list(at)) {
     const auto eq = item.find('=');
-    if (eq == std::string::npos) throw InputError("error: --at " + item + ": write NAME=VALUE, e.g. U=70mm/s");
+    if (eq == std::string::npos) throw InputError("--at " + item + ": write NAME=VALUE, e.g. U=70mm/s");
     const std::string name = item.substr(0, eq);
     std::size_t k = names.size();
     for (std::size_t i = 0; i < names.size(); ++i)
       if (iequals(names[i], name)) k = i;
     if (k == names.size()) {
       const auto near = closest(name, names);
-      throw InputError("error: --at: the model has no input '" + name + "'" +
+      throw InputError("--at: the model has no input '" + name + "'" +
                        (near.empty() ? "" : "; did you mean '" + near + "'?") + " (inputs: " + join(names) + ")");
     }
     try {
       x(0, Eigen::Index(k)) = file.inputs[k].unit.empty() ? parse_quantity(item.substr(eq + 1)).value
                                                           : parse_in(item.substr(eq + 1), file.inputs[k].unit);
     } catch (const std::exception &e) {
-      throw InputError("error: --at " + item + ": " + e.what());
+      throw InputError("--at " + item + ": " + e.what());
     }
   }
   for (Eigen::Index i = 0; i < x.cols(); ++i)
-    if (std::isnan(x(0, i))) throw InputError("error: --at: no value for input '" + names[std::size_t(i)] + "'");
+    if (std::isnan(x(0, i))) throw InputError("--at: no value for input '" + names[std::size_t(i)] + "'");
   for (Eigen::Index i = 0; i < x.cols(); ++i) {
     const auto &v = file.inputs[std::size_t(i)];
     if (x(0, i) < v.min || x(0, i) > v.max)

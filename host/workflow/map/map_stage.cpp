@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/suggest.hpp"
 #include "core/units.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 #include "workflow/map/mapping.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/stage/stage.hpp"
@@ -50,7 +51,13 @@ class MapStage : public Stage {
                    (near.empty() ? "" : "did you mean '" + near + "'? ") + "the train stage trains: " + join(trained));
       }
     }
-    if (model_.empty()) model_ = "bpnn";
+    if (model_.empty()) {  // no train stage in this workflow: the train stage's default, the first installed
+      try {
+        model_ = first_surrogate(registry, "the map stage");
+      } catch (const Error &e) {
+        diag.error(Location::of(file, cfg), "map.model", e.what());
+      }
+    }
     grid_ = setting_text(set, "grid");
     if (!grid_.empty()) {
       try {
@@ -85,7 +92,7 @@ class MapStage : public Stage {
     figures::use_style(style_);
     const fs::path model_json = ctx.run.train_dir(model_) / "model.json";
     if (!fs::exists(model_json))
-      throw InputError("error: map: " + model_json.string() + " does not exist; run the train stage with model " +
+      throw InputError("map: " + model_json.string() + " does not exist; run the train stage with model " +
                        model_);
     const auto file = analysis::load_model_json(model_json.string());
     MapRequest rq;

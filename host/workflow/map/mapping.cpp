@@ -39,7 +39,7 @@ class CheckedModel : public analysis::Model {
   void check(const Eigen::MatrixXd &values, const char *what) const {
     for (Eigen::Index c = 0; c < values.cols(); ++c)
       if (!values.col(c).allFinite())
-        throw InputError("error: " + source_ + ": the model's " + what + " of " + outputs_.at(std::size_t(c)) +
+        throw InputError(source_ + ": the model's " + what + " of " + outputs_.at(std::size_t(c)) +
                          " is not a finite number (its saved state is damaged or out of range); train it "
                          "again (spreadmap train, or spreadmap run --only train --force)");
   }
@@ -81,7 +81,7 @@ analysis::OptimumRule optimum_rule(const analysis::ModelFile &file, const MapRes
   const auto &rq_trust = m.trust.at(*m.rq);
   if (!std::isfinite(rq_trust.rmse_cv))
     throw InputError(fmt::format(
-        "error: map: confidence {} needs the predictive spread of R_q, and {} gives none: its model.json holds no "
+        "map: confidence {} needs the predictive spread of R_q, and {} gives none: its model.json holds no "
         "cross-validated RMSE either ({}); set confidence: 0.5 to choose by the predicted mean, or retrain with "
         "cross-validation (at least 4 rows)",
         confidence, file.plugin, rq_trust.reason));
@@ -119,7 +119,7 @@ MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &
     m.optima = analysis::find_optima(m.grid, *m.vs, *m.rq, rq.rq_max, optimum_rule(file, m, rq.confidence));
     m.frontier = analysis::frontier(m.grid, *m.vs, *m.rq);
   } else if (!rq.rq_max.empty()) {
-    throw InputError("error: map: an optimum needs outputs named vs and rq; this model has " + [&] {
+    throw InputError("map: an optimum needs outputs named vs and rq; this model has " + [&] {
       std::vector<std::string> n;
       for (const auto &o : file.outputs) n.push_back(o.name);
       return join(n);
@@ -181,10 +181,10 @@ double parse_confidence(const std::string &text, const std::string &where) {
     if (rest == "%") value /= 100;
     else if (!rest.empty()) throw std::invalid_argument("trailing text");
   } catch (const std::exception &) {
-    throw InputError("error: " + where + ": '" + text + "' is not a probability; write e.g. 0.9 or 90 %");
+    throw InputError(where + ": '" + text + "' is not a probability; write e.g. 0.9 or 90 %");
   }
   if (!(value >= 0.5 && value < 1))
-    throw InputError(fmt::format("error: {}: {} is outside [0.5, 1): 0.5 chooses by the predicted mean, 0.9 asks "
+    throw InputError(fmt::format("{}: {} is outside [0.5, 1): 0.5 chooses by the predicted mean, 0.9 asks "
                                  "P(R_q <= target) >= 0.9",
                                  where, text));
   return value;
@@ -208,14 +208,14 @@ std::vector<std::size_t> parse_grid_points(const std::string &text, std::size_t 
       if (used != part.size() || v < 2 || v > 100000) throw std::invalid_argument("range");
       out.push_back(std::size_t(v));
     } catch (const std::exception &) {
-      throw InputError("error: --grid " + text + ": write points per input as NXxNY with each at least 2, e.g. 101x81");
+      throw InputError("--grid " + text + ": write points per input as NXxNY with each at least 2, e.g. 101x81");
     }
     if (x == std::string::npos) break;
     pos = x + 1;
   }
   if (out.size() != inputs)
     throw InputError(
-        fmt::format("error: --grid {}: the map has {} inputs, the grid gives {}", text, inputs, out.size()));
+        fmt::format("--grid {}: the map has {} inputs, the grid gives {}", text, inputs, out.size()));
   return out;
 }
 

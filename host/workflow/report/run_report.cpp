@@ -15,7 +15,7 @@ fs::path write_run_report(const fs::path &run) {
   using nlohmann::json;
   const json manifest = report::read_json(run / "manifest.json");
   if (!manifest.is_object())
-    throw InputError("error: report: " + run.string() +
+    throw InputError("report: " + run.string() +
                      " holds no readable manifest.json: give the run directory a workflow wrote, e.g. runs/quickstart");
   const std::string name = report::member(manifest, "workflow").value("name", run.filename().string());
   const std::vector<report::PageSection> sections = {

@@ -33,10 +33,10 @@ RunDirectory::RunDirectory(fs::path root) : root_(std::move(root)) {
     try {
       manifest_ = nlohmann::json::parse(read_text(m));
     } catch (const nlohmann::json::exception &e) {
-      throw RunFailure("error: " + m.string() + " is damaged (" + e.what() + "): remove it, or use --force");
+      throw RunFailure(m.string() + " is damaged (" + e.what() + "): remove it, or use --force");
     }
     if (const std::string problem = shape_problem(manifest_); !problem.empty())
-      throw RunFailure("error: " + m.string() + ": not a spreadmap run manifest (" + problem +
+      throw RunFailure(m.string() + ": not a spreadmap run manifest (" + problem +
                        "): move it away to start this run directory afresh, or give the run another --out");
   } else {
     manifest_ = {{"format", "spreadmap-run"}, {"version", 1}};

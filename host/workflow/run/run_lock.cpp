@@ -48,11 +48,11 @@ void write_holder(int fd) {
 void create_run_folder(const std::filesystem::path &root) {
   std::error_code ec;
   if (std::filesystem::exists(root, ec) && !std::filesystem::is_directory(root, ec))
-    throw InputError("error: --out " + root.string() +
+    throw InputError("--out " + root.string() +
                      ": is a file, not a folder; give a new folder or an earlier run's directory");
   std::filesystem::create_directories(root, ec);
   if (ec)
-    throw InputError("error: --out " + root.string() + ": cannot create the folder (" + ec.message() +
+    throw InputError("--out " + root.string() + ": cannot create the folder (" + ec.message() +
                      "); give a folder in a place you can write to");
 }
 
@@ -69,7 +69,7 @@ RunLock::RunLock(const std::filesystem::path &dir, Mode mode) {
   // close-on-exec: a child (Xvfb, sbatch) must not keep the lock past this process
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0)
-    throw RunFailure("error: " + file.string() + ": cannot open the run directory's lock (" + std::strerror(errno) +
+    throw RunFailure(file.string() + ": cannot open the run directory's lock (" + std::strerror(errno) +
                      "); check the folder's permissions, or use another --out");
   const int op = (mode == Mode::exclusive ? LOCK_EX : LOCK_SH) | LOCK_NB;
   if (::flock(fd_, op) != 0) {
@@ -78,11 +78,11 @@ RunLock::RunLock(const std::filesystem::path &dir, Mode mode) {
     ::close(fd_);
     fd_ = -1;
     if (err != EWOULDBLOCK)
-      throw RunFailure("error: " + file.string() + ": cannot lock the run directory (" + std::strerror(err) +
+      throw RunFailure(file.string() + ": cannot lock the run directory (" + std::strerror(err) +
                        "); use another --out on a local disk");
     const std::string who = h.pid > 0 ? "spreadmap pid " + std::to_string(h.pid) + " on host " + h.host
                                       : "another spreadmap";
-    throw RunFailure("error: " + dir.string() + ": " + who +
+    throw RunFailure(dir.string() + ": " + who +
                      " is writing into this run directory; wait for it to finish, or give this run "
                      "another --out");
   }

@@ -78,7 +78,7 @@ void attach_backend(engine::Simulation<Real> &sim, const SceneFile &s, const Sce
                    s.file.string());
       return;
     }
-    throw InputError(fmt::format("error: {}: scene.backend: cuda: the rolling spring (rolling_model: epsd) steps on "
+    throw InputError(fmt::format("{}: scene.backend: cuda: the rolling spring (rolling_model: epsd) steps on "
                                  "the CPU only: set scene.backend: cpu or auto, or rolling_model: constant",
                                  s.file.string()));
   }
@@ -147,7 +147,7 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
       const BoundSpreader spreader{&plugin, w.spreader.time_offset};
       if (const auto shortfall = spreader_span_shortfall(spreader.description(), s.domain);
           shortfall && shortfall->periodic)
-        throw InputError(fmt::format("error: {}{}: {}\n  {}", at, w.key_path, shortfall->what, shortfall->fix));
+        throw InputError(fmt::format("{}{}: {}\n  {}", at, w.key_path, shortfall->what, shortfall->fix));
       sim.add_geometry({&spreader.ops(), plugin.get(), engine::bound_law(wall_law), w.name, w.spreader.time_offset});
       run->spreaders.push_back(spreader);
       spreader_laws.push_back(&wall_law);

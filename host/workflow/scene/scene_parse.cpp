@@ -207,9 +207,7 @@ const LoadedPlugin *named_plugin(const ParseContext &r, const YAML::Node &node, 
   try {
     return &registry.get(kind, node["use"].Scalar());
   } catch (const Error &e) {
-    std::string text = e.what();
-    if (text.rfind("error: ", 0) == 0) text.erase(0, 7);
-    r.diag.error(r.at(node["use"]), key + ".use", text);
+    r.diag.error(r.at(node["use"]), key + ".use", e.what());
     return nullptr;
   }
 }
@@ -306,9 +304,7 @@ void read_spreader(const ParseContext &r, const YAML::Node &wall, const std::str
                                          : node),
                    at + ".y_centre", shortfall->what, shortfall->fix);
   } catch (const PluginError &e) {
-    std::string text = e.what();
-    if (text.rfind("error: ", 0) == 0) text.erase(0, 7);
-    r.diag.error(r.at(node), at, text);
+    r.diag.error(r.at(node), at, e.what());
   }
 }
 
@@ -577,9 +573,7 @@ std::optional<SceneFile> parse_scene(const fs::path &file, const YAML::Node &roo
     try {
       PluginInstance instance(*law, params.dump());
     } catch (const PluginError &e) {
-      std::string text = e.what();
-      if (text.rfind("error: ", 0) == 0) text.erase(0, 7);
-      diag.error(where, path, text);
+      diag.error(where, path, e.what());
     }
   };
   probe(s.pair_law, r.at(root["contact"]), "contact");

@@ -38,7 +38,7 @@ SceneParticles generate(const SceneFile &scene) {
     heap = powder::insert_heap(spec);
   } catch (const std::exception &e) {
     throw InputError(fmt::format(
-        "error: {}: particles.generate: {}\n  give a larger box (lo, hi), fewer or smaller spheres, or move the walls "
+        "{}: particles.generate: {}\n  give a larger box (lo, hi), fewer or smaller spheres, or move the walls "
         "that cut into the box",
         scene.file.string(), e.what()));
   }
@@ -88,7 +88,7 @@ void check_overlaps(const SceneFile &scene, const SceneParticles &p, std::vector
             const double allowed = tol * 2 * std::min(s.radius[i], s.radius[j]);
             if (overlap > allowed && problems.size() < problems_shown)
               problems.push_back(fmt::format(
-                  "error: {}: overlaps particle {} by {:.4g} m ({:.3g} of the smaller diameter, more than "
+                  "{}: overlaps particle {} by {:.4g} m ({:.3g} of the smaller diameter, more than "
                   "particles.overlap_tolerance = {:g})\n  move them apart, or raise particles.overlap_tolerance",
                   where(scene, p, i), j, overlap, overlap / (2 * std::min(s.radius[i], s.radius[j])), tol));
           }
@@ -107,19 +107,19 @@ SceneParticles load_particles(const SceneFile &scene) {
       out.set = engine::read_particles_csv(scene.particles.file, &out.lines);
     } catch (const InputError &e) {
       throw InputError(
-          fmt::format("error: {}\n  (the particle file of {}: particles.file; see docs/scenes.md for its columns)",
+          fmt::format("{}\n  (the particle file of {}: particles.file; see docs/scenes.md for its columns)",
                       e.what(), scene.file.string()));
     }
     if (out.set.size() == 0)
       throw InputError(
-          fmt::format("error: {}: no particles after the header\n  add one line per particle (particles.file of {})",
+          fmt::format("{}: no particles after the header\n  add one line per particle (particles.file of {})",
                       scene.particles.file.string(), scene.file.string()));
   }
   engine::ParticleSet &s = out.set;
   if (s.mass.empty()) {
     if (!(scene.particles.density > 0))
       throw InputError(fmt::format(
-          "error: {}: particles.density: the particle file has neither a density nor a mass column\n  add a density "
+          "{}: particles.density: the particle file has neither a density nor a mass column\n  add a density "
           "column to {} or particles.density: <kg/m^3> to the scene",
           scene.particles.where.str(), scene.particles.file.string()));
     s.mass.resize(s.size());
@@ -137,7 +137,7 @@ void check_particles(const SceneFile &scene, const SceneParticles &p) {
     for (int a = 0; a < 3; ++a)
       if (!d.periodic[a] && (c[a] < d.lo[a] || c[a] >= d.hi[a])) {
         problems.push_back(
-            fmt::format("error: {}: {} = {:g} m is outside the domain [{:g}, {:g}) m along {}\n  move "
+            fmt::format("{}: {} = {:g} m is outside the domain [{:g}, {:g}) m along {}\n  move "
                         "the particle inside, widen domain (lo, hi) or make {} periodic",
                         where(scene, p, i), "xyz"[a], c[a], d.lo[a], d.hi[a], "xyz"[a], "xyz"[a]));
         break;
@@ -148,10 +148,10 @@ void check_particles(const SceneFile &scene, const SceneParticles &p) {
       if (!(overlap > allowed)) continue;
       problems.push_back(
           overlap > s.radius[i]
-              ? fmt::format("error: {}: its centre is on the wrong side of wall '{}' ({}): behind a plane, outside "
+              ? fmt::format("{}: its centre is on the wrong side of wall '{}' ({}): behind a plane, outside "
                             "a box or a tube, inside a block or a solid cylinder\n  move the particle, or the wall",
                             where(scene, p, i), w.name, w.key_path)
-              : fmt::format("error: {}: sinks {:.4g} m into wall '{}' ({}), more than particles.overlap_tolerance = "
+              : fmt::format("{}: sinks {:.4g} m into wall '{}' ({}), more than particles.overlap_tolerance = "
                             "{:g} of its diameter\n  move the particle or the wall apart",
                             where(scene, p, i), overlap, w.name, w.key_path, scene.particles.overlap_tolerance));
       break;

@@ -12,6 +12,7 @@
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "core/schema.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 #include "workflow/simulate/case_once.hpp"
 #include "workflow/figures/stage_figures.hpp"
 #include "workflow/characterise/layer_eval.hpp"
@@ -159,12 +160,13 @@ void run_adaptive_design(StageContext &ctx, const Design &design, bool render) {
   const bool two_fidelities = design.expensive_budget > 0;
   const Eigen::MatrixXd candidates = candidate_matrix(design);
 
-  const LoadedPlugin &gp = ctx.registry.get("surrogate", "gp");
-  nlohmann::json gp_defaults = default_params(*gp.descriptor, gp.id());
+  const LoadedPlugin &model = surrogate_with_std(ctx.registry, "the adaptive design");
+  nlohmann::json model_defaults = default_params(*model.descriptor, model.id());
   // Two fidelities: one noise level each (the cheap strip scatters more; a shared one blurs the
-  // expensive cases). The fidelity is the input after the design's variables.
-  if (two_fidelities) gp_defaults["noise_by_input"] = d + 1;
-  const std::string gp_params = gp_defaults.dump();
+  // expensive cases), where the model takes one per value of an input: the fidelity, the input after
+  // the design's variables.
+  if (two_fidelities && model_defaults.contains("noise_by_input")) model_defaults["noise_by_input"] = d + 1;
+  const std::string model_params = model_defaults.dump();
   const std::size_t budget = std::min(design.budget ? design.budget : n, n);
   const double target = design.target_nrmse > 0 ? design.target_nrmse : 1.0;
   std::vector<std::size_t> initial = analysis::space_filling_start(candidates);
@@ -173,9 +175,9 @@ void run_adaptive_design(StageContext &ctx, const Design &design, bool render) {
 
   AdaptiveCases cases{ctx, design, candidates, render};
   auto make_model = [&]() -> std::unique_ptr<analysis::Model> {
-    return analysis::PluginModel::create(gp.descriptor, gp_params);
+    return analysis::PluginModel::create(model.descriptor, model_params);
   };
-  nlohmann::json report = {{"outputs", design.outputs}, {"target_loo_nrmse_percent", target}, {"candidates", n}};
+  nlohmann::json report = {{"outputs", design.outputs}, {"target_loo_nrmse_percent", target}, {"candidates", n}, {"model", model.descriptor->name}};
   const AdaptiveOutcome r = two_fidelities ? run_two_fidelities(cases, make_model, initial, budget, target, report)
                                            : run_one_fidelity(cases, make_model, initial, budget, target, report);
   report["cases"] = r.chosen, report["history"] = r.history;

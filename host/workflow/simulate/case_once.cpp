@@ -6,6 +6,7 @@
 #include "core/files.hpp"
 #include "core/schema.hpp"
 #include "core/stop.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 #include "workflow/spreading/substrate_roughness.hpp"
 #include "workflow/spreading/case_setup.hpp"
 #include "workflow/spreading/coarse_grain.hpp"
@@ -39,10 +40,11 @@ nlohmann::json ensure_case(StageContext &ctx, const CaseRequest &req, bool rende
 }
 
 LayerResult measure_case_layer(PluginRegistry &registry, const Scene &scene, const fs::path &dir) {
-  const LoadedPlugin &layer = registry.get("metrics", "layer");
+  const LoadedPlugin &metrics = contract_metrics_plugin(registry, "the adaptive design");
   Diagnostics diag;
   LayerRequest lr;
-  lr.params = validate_params(SchemaView::of(*layer.descriptor), YAML::Node(), "<defaults>", "metrics/layer", diag);
+  lr.plugin = metrics.descriptor->name;
+  lr.params = validate_params(SchemaView::of(*metrics.descriptor), YAML::Node(), "<defaults>", metrics.id(), diag);
   diag.throw_if_any();
   const auto spreader = describe_spreader(scene, registry, dir / "scene.json");
   lr.region = default_region(scene, spreader);

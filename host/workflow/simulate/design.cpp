@@ -80,8 +80,8 @@ void append_comma_list(const YAML::Node &node, const sm_param_v1 &param, const s
     if (!local.empty()) {
       for (auto e : local.errors()) {
         // attach the node's position
-        const std::string tag = "error: " + file + ": ";
-        if (e.rfind(tag, 0) == 0) e = "error: " + Location::of(file, node).str() + ": " + e.substr(tag.size());
+        const std::string tag = file + ": ";
+        if (e.rfind(tag, 0) == 0) e = Location::of(file, node).str() + ": " + e.substr(tag.size());
         diag.error(e);
       }
     } else {

@@ -73,7 +73,7 @@ class SimulateStage : public Stage {
     const std::size_t n = design_.cases.size() * replicates_;
     const auto &only_case = ctx.options.only_case;
     if (only_case && *only_case >= n)
-      throw InputError("error: --case " + std::to_string(*only_case) + ": the design has " + std::to_string(n) +
+      throw InputError("--case " + std::to_string(*only_case) + ": the design has " + std::to_string(n) +
                        " cases, numbered 0 to " + std::to_string(n - 1));
     CaseBatch batch{{}, n};  // the unfinished cases
     nlohmann::json cases = nlohmann::json::array();

@@ -124,7 +124,7 @@ ParticleSet fed_onto_bed(const Scene &scene, PluginRegistry &reg, const fs::path
   for (std::size_t i = 0; i < bed.size(); ++i) touching += touches(bed.x[i], bed.y[i], bed.z[i], bed.radius[i]);
   if (touching)
     throw InputError(
-        fmt::format("error: {}: scene.layers.thickness: {} spheres of the bed touch the spreader at its "
+        fmt::format("{}: scene.layers.thickness: {} spheres of the bed touch the spreader at its "
                     "start, raised by the platform's drop\n  use thicker layers or a larger gap",
                     scene_file.string(), touching));
   const double clearance = heap_clearance(scene);
@@ -133,7 +133,7 @@ ParticleSet fed_onto_bed(const Scene &scene, PluginRegistry &reg, const fs::path
   double top = 0;
   for (std::size_t i = bed.size(); i < fed.size(); ++i) top = std::max(top, fed.z[i] + fed.radius[i]);
   if (top > scene.domain.height)
-    throw InputError(fmt::format("error: {}: scene.layers: the heap fed onto the bed reaches z = {:.3g} mm, above the "
+    throw InputError(fmt::format("{}: scene.layers: the heap fed onto the bed reaches z = {:.3g} mm, above the "
                                  "domain's height {:.3g} mm\n  make the domain taller (domain.height) or let the heap "
                                  "settle longer (powder.settle_time)",
                                  scene_file.string(), top * 1e3, scene.domain.height * 1e3));

@@ -82,7 +82,7 @@ struct Refusals {
   bool none(const std::string &path, const char *what) const {
     if (count == 0) return true;
     if (count > errors_shown)
-      diag.error(fmt::format("error: {}: {} more {} refused", path, count - errors_shown, what));
+      diag.error(fmt::format("{}: {} more {} refused", path, count - errors_shown, what));
     return false;
   }
 };
@@ -201,7 +201,7 @@ std::optional<powder::HeightField> parse_height_map(const std::string &text, con
   try {
     table = analysis::Table::parse_csv(without_comments(text), path);
   } catch (const std::exception &e) {
-    diag.error(fmt::format("error: {}: {}\n  {}", e.what(), key, file_shape));
+    diag.error(fmt::format("{}: {}\n  {}", e.what(), key, file_shape));
     return std::nullopt;
   }
   const std::optional<HeightColumns> column = height_columns(table, path, key, diag);

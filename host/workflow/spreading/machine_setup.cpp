@@ -59,7 +59,7 @@ ParticleSet fill_reservoir(const Scene &scene, PluginRegistry &reg, const std::s
   for (std::size_t i = 0; i < settled.size(); ++i) top = std::max(top, settled.z[i]);
   if (!(top > -dmax))
     throw InputError(fmt::format(
-        "error: {}: scene.machine: the powder poured into the reservoir settled {:.3g} mm below the plates: it is "
+        "{}: scene.machine: the powder poured into the reservoir settled {:.3g} mm below the plates: it is "
         "not full\n  make the domain taller (domain.height) so that more powder fits above the reservoir while it "
         "is poured",
         scene_file.string(), -top * 1e3));

@@ -53,7 +53,7 @@ SizeDistribution size_distribution(const Powder &powder) {
   if (powder.distribution == "table") {
     if (!powder.table.is_array() || powder.table.empty())
       throw InputError(
-          "error: scene.powder.table: a table distribution needs table: [{diameter: 20 um, fraction: 0.3}, ...] or "
+          "scene.powder.table: a table distribution needs table: [{diameter: 20 um, fraction: 0.3}, ...] or "
           "a CSV file");
     std::vector<double> from, to, fraction;
     for (const auto &row : powder.table) {

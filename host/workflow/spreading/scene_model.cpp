@@ -173,7 +173,7 @@ class JsonReader {
     return at(key);
   }
   [[noreturn]] void fail(const std::string &key, const std::string &what) const {
-    throw InputError("error: " + source_ + ": " + key + ": " + what +
+    throw InputError(source_ + ": " + key + ": " + what +
                      "\n  a scene as spreadmap writes it (cases/cNNN/scene.json) has every key, in SI; run the "
                      "workflow again to write it anew");
   }
@@ -244,7 +244,7 @@ Scene read_scene_file(const std::filesystem::path &file) {
   try {
     in = json::parse(read_text(file));
   } catch (const json::parse_error &e) {
-    throw InputError("error: " + file.string() + ": not valid JSON (" + e.what() + ")");
+    throw InputError(file.string() + ": not valid JSON (" + e.what() + ")");
   }
   return scene_from_json(in, file.string());
 }
@@ -269,7 +269,7 @@ void set_host_key(Scene &scene, const std::string &section, const std::string &k
   else if (section == "time") fields(scene.time, set);
   else if (section == "layers") fields(scene.layers, set);
   else if (section == "machine" && scene.machine) fields(*scene.machine, set);
-  if (!found) throw InputError("error: " + path + "." + key + ": the scene has no such key");
+  if (!found) throw InputError(path + "." + key + ": the scene has no such key");
 }
 
 }  // namespace spreadmap

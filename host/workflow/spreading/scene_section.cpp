@@ -153,13 +153,6 @@ YAML::Node known_only(const YAML::Node &node, const SchemaView &a, const SchemaV
   return out;
 }
 
-// "error: " is added once, by the diagnostics that carry the position.
-std::string without_error_prefix(std::string text) {
-  const std::string tag = "error: ";
-  if (text.rfind(tag, 0) == 0) text.erase(0, tag.size());
-  return text;
-}
-
 // Validates a section key by key, reporting positions in the file each key came from.
 nlohmann::json validate_split(const SchemaView &schema, const YAML::Node &preset, const YAML::Node &user,
                               const std::string &scene_file, const std::string &section, Diagnostics &diag,
@@ -219,7 +212,7 @@ void probe_plugins(const nlohmann::json &scene, const LoadedPlugin &law, const L
       PluginInstance instance(plugin, params.dump());
       return true;
     } catch (const PluginError &e) {
-      diag.error(section(name), std::string("scene.") + name, without_error_prefix(e.what()));
+      diag.error(section(name), std::string("scene.") + name, e.what());
       return false;
     }
   };
@@ -284,7 +277,7 @@ const LoadedPlugin *section_plugin(PluginRegistry &registry, const char *section
     return &registry.get(section, name);
   } catch (const std::exception &e) {
     diag.error(Location::of(file, user[section] && user[section]["use"] ? user[section]["use"] : user),
-               std::string("scene.") + section + ".use", without_error_prefix(e.what()));
+               std::string("scene.") + section + ".use", e.what());
   }
   return nullptr;
 }

@@ -76,7 +76,7 @@ std::optional<std::vector<Row>> rows_from_csv(const std::string &path, Diagnosti
   try {
     table = analysis::Table::read_csv(path);
   } catch (const std::exception &e) {
-    diag.error(fmt::format("error: {}: {}\n  {}; the first line names the columns", e.what(), key_path, row_shapes));
+    diag.error(fmt::format("{}: {}\n  {}; the first line names the columns", e.what(), key_path, row_shapes));
     return std::nullopt;
   }
   bool ok = true;

@@ -26,7 +26,7 @@ struct Common {
 };
 
 // An unsigned option read as what it is: boost reads "-1" into an unsigned as 2^64 - 1 and goes on.
-// `what` ends "error: --<option> <text>: not <what>".
+// `what` ends "--<option> <text>: not <what>".
 template <class T>
 po::typed_value<std::string> *whole_number(const std::string &option, T *target, const std::string &what) {
   return po::value<std::string>()->notifier([=](const std::string &text) {
@@ -38,7 +38,7 @@ po::typed_value<std::string> *whole_number(const std::string &option, T *target,
         used = 0;
       }
     if (used == 0 || used != text.size() || v > std::numeric_limits<T>::max())
-      throw InputError("error: --" + option + " " + text + ": not " + what);
+      throw InputError("--" + option + " " + text + ": not " + what);
     *target = T(v);
   });
 }

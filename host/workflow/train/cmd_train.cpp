@@ -9,6 +9,7 @@
 #include "core/error.hpp"
 #include "workflow/stage/command_line.hpp"
 #include "workflow/stage/commands.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 #include "core/units.hpp"
 #include "workflow/train/train_config.hpp"
 #include "workflow/train/training.hpp"
@@ -79,13 +80,13 @@ analysis::Table read_training_table(const std::string &table, const TrainRequest
     try {
       return analysis::Table::read_csv(table);
     } catch (const std::exception &e) {
-      throw InputError(std::string("error: ") + e.what());
+      throw InputError(std::string(e.what()));
     }
   }();
   for (const auto &name : rq.inputs)
-    if (!t.has_column(name)) throw InputError("error: --inputs: " + table + " has no column '" + name + "'");
+    if (!t.has_column(name)) throw InputError("--inputs: " + table + " has no column '" + name + "'");
   for (const auto &name : rq.outputs)
-    if (!t.has_column(name)) throw InputError("error: --outputs: " + table + " has no column '" + name + "'");
+    if (!t.has_column(name)) throw InputError("--outputs: " + table + " has no column '" + name + "'");
   return t;
 }
 
@@ -104,8 +105,8 @@ int cmd_train(int argc, char **argv) {
   cli::Common c;
   d.add_options()("table", po::value(&table)->required(), "CSV with a header row")(
       "inputs", po::value(&inputs)->required(), "input columns, comma-separated, e.g. U,omega")(
-      "outputs", po::value(&outputs)->default_value("vs,rq"), "output columns, comma-separated")(
-      "model", po::value(&rq.model)->default_value("bpnn"), "surrogate plugin: bpnn | gp | ...")(
+      "outputs", po::value(&outputs)->default_value(contract_columns()), "output columns, comma-separated")(
+      "model", po::value(&rq.model), "surrogate plugin (default: the first installed, in name order)")(
       "out", po::value(&out), "folder for model.json and the report (default train_<model> beside the table)")(
       "split", po::value(&split)->default_value("auto"),
       "auto (by size: holdout from 40 rows, kfold:5 from 12, loo below) | holdout (the study's 35/10) | kfold:K | "
@@ -122,21 +123,22 @@ int cmd_train(int argc, char **argv) {
   p.add("table", 1);
   po::variables_map vm;
   if (!cli::parse(argc, argv, d, p, vm,
-                  "train TABLE.csv --inputs U,omega [--outputs vs,rq] [--model bpnn|gp] [--out DIR] [--split "
+                  "train TABLE.csv --inputs U,omega [--outputs vs,rq] [--model NAME] [--out DIR] [--split "
                   "auto|holdout|kfold:K|loo|column:NAME] "
                   "[--split-column NAME] [--param KEY=VALUE ...] [--format table|json]"))
     return 0;
   c.apply();
-  if (format != "table" && format != "json") throw InputError("error: --format " + format + ": use table or json");
+  if (format != "table" && format != "json") throw InputError("--format " + format + ": use table or json");
   if (!split_column.empty()) split = "column:" + split_column;
   try {
     rq.validation = analysis::parse_validation(split, folds);
   } catch (const std::exception &e) {
-    throw InputError(std::string("error: --split ") + e.what());
+    throw InputError(std::string("--split ") + e.what());
   }
   rq.inputs = split_list(inputs);
   rq.outputs = split_list(outputs);
   auto &registry = PluginRegistry::global();
+  if (rq.model.empty()) rq.model = first_surrogate(registry, "spreadmap train");
   rq.params = surrogate_params(registry, rq.model, params);
   rq.units = units_beside(table);
   const analysis::Table t = read_training_table(table, rq);

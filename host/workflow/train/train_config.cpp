@@ -2,6 +2,7 @@
 
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 #include "workflow/stage/stage_settings.hpp"
 
 namespace spreadmap {
@@ -15,8 +16,8 @@ std::vector<std::string> names(const YAML::Node &n) {
   return out;
 }
 constexpr sm_param_v1 train_schema[] = {
-    table("model", "a surrogate plugin or a list of them, e.g. [bpnn, gp] (default bpnn)"),
-    table("params", "the surrogate's parameters {...}, or one mapping per model {bpnn: {...}, gp: {...}}"),
+    table("model", "a surrogate plugin or a list of them (default: every one installed, in name order)"),
+    table("params", "the surrogate's parameters {...}, or one mapping per model {NAME: {...}, ...}"),
     table("inputs", "input columns (default: the design's variables)"),
     table("outputs", "output columns (default [vs, rq])"),
     text("split", "auto", "auto (by the number of cases: holdout, 5-fold or leave-one-out) | holdout | kfold:K | loo "
@@ -35,7 +36,10 @@ TrainConfig read_train_config(const Workflow &wf, const StageEntry &entry, Plugi
   const std::string file = wf.file.string();
   const YAML::Node &cfg = entry.config;
   TrainConfig c;
-  const std::vector<std::string> models = cfg["model"] ? names(cfg["model"]) : std::vector<std::string>{"bpnn"};
+  const std::vector<std::string> models = cfg["model"] ? names(cfg["model"]) : every_surrogate(registry);
+  if (models.empty())
+    diag.error(Location::of(file, cfg), "train", "no surrogate plugin is installed to train",
+               "install one (docs/plugins.md; spreadmap plugins --kind surrogate lists them)");
   const YAML::Node params = cfg["params"];
   for (const auto &m : models) {
     const LoadedPlugin *plugin = nullptr;

@@ -46,7 +46,7 @@ class TrainStage : public Stage {
     figures::use_style(config_.style);
     const fs::path csv = ctx.run.metrics_csv();
     if (!fs::exists(csv))
-      throw InputError("error: train: " + csv.string() + " does not exist; run the characterise stage first");
+      throw InputError("train: " + csv.string() + " does not exist; run the characterise stage first");
     const auto table = last_layer_rows(analysis::Table::read_csv(csv.string()));
     std::vector<std::string> inputs = config_.inputs;
     if (inputs.empty())

@@ -89,7 +89,7 @@ std::vector<std::size_t> training_rows(const analysis::Table &table, const Train
     spdlog::warn("train: {} of {} rows of {} have an undefined input or output and are left out",
                  table.rows() - rows.size(), table.rows(), table.source());
   if (rows.size() < 4)
-    throw InputError("error: train: " + table.source() + " has " + std::to_string(rows.size()) +
+    throw InputError("train: " + table.source() + " has " + std::to_string(rows.size()) +
                      " usable rows; a surrogate needs at least 4 (simulate more cases)");
   return rows;
 }
@@ -130,7 +130,7 @@ analysis::Table cross_validate_training(const std::function<std::unique_ptr<anal
                                                                       : std::min<std::size_t>(5, n_cv);
   if (k > n_cv)
     throw InputError(
-        fmt::format("error: train: split {} needs at least {} usable rows, {} has {}; use loo or fewer folds",
+        fmt::format("train: split {} needs at least {} usable rows, {} has {}; use loo or fewer folds",
                     analysis::spelling(v), k, table.source(), n_cv));
   std::vector<std::string> cv_names = {"case", "fold"};
   for (const auto &o : rq.outputs) cv_names.push_back(o + "_true"), cv_names.push_back(o + "_cv");
@@ -201,7 +201,7 @@ analysis::Table training_data_table(const TrainRequest &rq, const Eigen::MatrixX
 TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &table, const TrainRequest &rq,
                             const std::filesystem::path &out_dir, bool figures_on) {
   if (rq.inputs.empty() || rq.outputs.empty())
-    throw InputError("error: train: give at least one input and one output column");
+    throw InputError("train: give at least one input and one output column");
   const std::vector<std::size_t> rows = training_rows(table, rq);
 
   const Eigen::MatrixXd x = table.matrix(rq.inputs, rows), y = table.matrix(rq.outputs, rows);
@@ -211,7 +211,7 @@ TrainResult train_surrogate(PluginRegistry &registry, const analysis::Table &tab
   const analysis::Validation v = analysis::resolve_validation(rq.validation, rows.size());
   spdlog::info("train {}: split {}: {} ({})", rq.model, analysis::spelling(v), analysis::describe(v), v.reason);
   const Split split = split_rows(table, rows, v, rq.seed);
-  if (split.train.size() < 2) throw InputError("error: train: fewer than 2 training rows in " + table.source());
+  if (split.train.size() < 2) throw InputError("train: fewer than 2 training rows in " + table.source());
 
   const Eigen::MatrixXd noise = analysis::replicate_noise_variance(table, rq.outputs, rows);
   auto model = make();
@@ -263,7 +263,7 @@ nlohmann::json surrogate_params(PluginRegistry &registry, const std::string &mod
   for (const auto &a : assignments) {
     const auto eq = a.find('=');
     if (eq == std::string::npos)
-      throw InputError("error: --param " + a + ": write KEY=VALUE, e.g. --param epochs=20000");
+      throw InputError("--param " + a + ": write KEY=VALUE, e.g. --param epochs=20000");
     section[a.substr(0, eq)] = a.substr(eq + 1);
   }
   Diagnostics diag;

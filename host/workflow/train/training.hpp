@@ -20,7 +20,7 @@
 namespace spreadmap {
 
 struct TrainRequest {
-  std::string model = "bpnn";                        // surrogate plugin
+  std::string model;                                 // surrogate plugin
   nlohmann::json params = nlohmann::json::object();  // validated SI values of its schema
   std::vector<std::string> inputs, outputs;          // column names
   analysis::Validation validation;                   // auto (by size) unless asked

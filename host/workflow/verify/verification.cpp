@@ -40,9 +40,10 @@ std::vector<PredictedValue> predict_for_runs(PluginRegistry &registry, const ana
     } else {
       const double cv = report_value(model, o, "nrmse_cv");
       if (!std::isfinite(cv))
-        throw InputError("error: verify: " + model.plugin + " gives no predictive std and its report no nrmse_cv of " +
+        throw InputError("verify: " + model.plugin + " gives no predictive std and its report no nrmse_cv of " +
                          model.outputs[o].name +
-                         ", so it claims no interval to check; train with more cases or use model: gp");
+                         ", so it claims no interval to check; train with more cases or use a model that gives a predictive "
+                         "standard deviation (spreadmap plugins --kind surrogate)");
       v.std = cv / 100.0 * (model.outputs[o].max - model.outputs[o].min);
       v.basis = "cross-validated RMSE";
     }

@@ -83,11 +83,11 @@ class VerifyStage : public Stage {
     if (rounds_ > 1 && (!characterise_stage_ || !train_stage_))
       diag.error(Location::of(file, entry.config["rounds"]), "verify.rounds",
                  "the verify loop refits the model with its runs: it needs characterise and train stages before it",
-                 "add `- characterise` and `- train: {model: gp}` before the map stage, or remove rounds");
+                 "add `- characterise` and `- train` before the map stage, or remove rounds");
     if (!map)
       diag.error(entry.where, "verify",
                  "needs a map stage before it: it verifies the optimum the map proposes (map/optimum.json)",
-                 "add `- map: {model: gp, rq_max: [110 um]}` before `- verify`");
+                 "add `- map: {rq_max: [110 um]}` before `- verify`");
     else if (!map->config["rq_max"])
       diag.error(map->where, "map.rq_max", "the verify stage needs an optimum, and a map without rq_max proposes none",
                  "give the map stage a target roughness, e.g. rq_max: [110 um]");
@@ -171,7 +171,7 @@ class VerifyStage : public Stage {
       for (const auto &m : simulated) {
         const auto &v = m["metrics"].value(metric, nlohmann::json());
         if (!v.is_number())
-          throw RunFailure("error: verify: " + m.value("case", "") + " has no value of " + metric +
+          throw RunFailure("verify: " + m.value("case", "") + " has no value of " + metric +
                            " (empty sampling region?); see its metrics.json");
         values.push_back(v.get<double>());
       }
@@ -203,19 +203,19 @@ class VerifyStage : public Stage {
   Round verify_round(StageContext &ctx, std::size_t round) {
     const fs::path optimum_json = ctx.run.map_dir() / "optimum.json";
     if (!fs::exists(optimum_json))
-      throw InputError("error: verify: " + optimum_json.string() + " does not exist; run the map stage first");
+      throw InputError("verify: " + optimum_json.string() + " does not exist; run the map stage first");
     const auto optimum = nlohmann::json::parse(read_text(optimum_json));
     const std::string plugin = optimum.value("model", "");
     const std::string name = plugin.substr(plugin.find('/') + 1);
     const auto model = analysis::load_model_json((ctx.run.train_dir(name) / "model.json").string());
     const auto vs = output_index(model, "vs"), rq = output_index(model, "rq");
-    if (!vs || !rq) throw InputError("error: verify: the model " + plugin + " has no outputs named vs and rq");
+    if (!vs || !rq) throw InputError("verify: the model " + plugin + " has no outputs named vs and rq");
 
     const Proposed proposed = proposed_points(ctx, model, optimum, round);
     const std::vector<VerifyPoint> &points = proposed.points;
     if (points.empty())
       throw RunFailure(
-          "error: verify: " + optimum_json.string() +
+          "verify: " + optimum_json.string() +
           " proposes no operating point (no grid point meets any rq_max); raise rq_max or widen the design");
 
     const auto simulated = run_and_measure(ctx, points, runs_, round * runs_, settings_);
@@ -281,7 +281,7 @@ class VerifyStage : public Stage {
       SceneKey key;
       std::string why;
       if (!find_scene_key(ctx.scene, ctx.registry, model.inputs[i].name, key, why))
-        throw InputError("error: verify: the model's input " + model.inputs[i].name +
+        throw InputError("verify: the model's input " + model.inputs[i].name +
                          " is not a key of the scene, so its optimum cannot be simulated: " + why);
       apply_scene_value(scene, key, x(Eigen::Index(i)));
     }

@@ -9,7 +9,7 @@
 // `segregation: true` it also compares the layer's size distribution with the feed's (segregation.hpp);
 // with `depth_profile: true` it reports packing against depth (depth_profile.hpp).
 // The algorithm lives in layer_metrics / heightmap / segregation (plain C++, tested directly); this
-// file is only the C boundary. The plugin writes no file: the host asks for the last map through heightmap().
+// file is only the class the SDK wraps (spreadmap/metric.hpp). The plugin writes no file: the host asks for the last map through heightmap().
 #include <spreadmap/metric.hpp>
 #include <spreadmap/plugin.hpp>
 
@@ -44,6 +44,19 @@ class Layer {
                  "thickness below the mean surface that packing_top covers; 0 = two mean sphere diameters "
                  "(a multi-layer bed: give the layer thickness)"),
   };
+  static constexpr sm_metric_v1 gives[] = {
+      {"mean_height", "m", "mean height of the height map above the substrate"},
+      {"rq", "m", "R_q: standard deviation of the height map"},
+      {"vs", "m^2/s", "V_s: volume spread per unit spreader width and time, mean height x U"},
+      {"solid_thickness", "m", "solid volume in the region per its area (spheres clipped by the region)"},
+      {"packing_fraction", "-", "solid volume per volume under the height map"},
+      {"packing_fraction_gap", "-", "solid volume per region area x spreader gap"},
+      {"coverage", "-", "share of the region's cells with powder"},
+      {"largest_bare_patch", "m^2", "area of the largest connected patch without powder"},
+      {"particles_in_region", "-", "spheres whose centre lies in the region"},
+      {"cell", "m", "height-map cell size"},
+      {"loose_spheres", "-", "spheres left out as resting on nothing"},
+  };
   static Layer bind(const sm::Values &v) {
     Layer layer;
     layer.cell_ = v["grid"];
@@ -63,7 +76,11 @@ class Layer {
     json_ = sm::layer::metrics_json(last_);
     return json_.c_str();
   }
-  const sm::layer::LayerResult &last() const { return last_; }
+  sm::HeightMapView heightmap() const {
+    if (last_.height.empty()) return {};
+    return {uint32_t(last_.grid.nx), uint32_t(last_.grid.ny), last_.grid.x0, last_.grid.y0, last_.grid.cell,
+            last_.height.data()};
+  }
 
  private:
   double cell_ = 0;
@@ -74,35 +91,8 @@ class Layer {
   std::string json_;  // owned here: valid until the next evaluate() or destroy()
 };
 
-const char *evaluate(void *self, const sm_layer_input_v1 *in, sm_error *err) {
-  try {
-    if (!self || !in) throw std::invalid_argument("evaluate called without an instance or an input");
-    return static_cast<Layer *>(self)->evaluate(*in);
-  } catch (const std::exception &e) {
-    sm::detail::set_error(err, e.what());
-  } catch (...) {
-    sm::detail::set_error(err, "unknown exception while characterising the layer");
-  }
-  return nullptr;
-}
-
-const double *heightmap(const void *self, uint32_t *nx, uint32_t *ny, double *x0, double *y0, double *cell) {
-  const auto *layer = static_cast<const Layer *>(self);
-  const sm::layer::LayerResult *r = layer ? &layer->last() : nullptr;
-  const bool have = r && !r->height.empty();
-  if (nx) *nx = have ? r->grid.nx : 0;
-  if (ny) *ny = have ? r->grid.ny : 0;
-  if (x0) *x0 = have ? r->grid.x0 : 0;
-  if (y0) *y0 = have ? r->grid.y0 : 0;
-  if (cell) *cell = have ? r->grid.cell : 0;
-  return have ? r->height.data() : nullptr;
-}
-
-const sm_metrics_ops_v1 ops_table = {&evaluate, &heightmap};
-
 }  // namespace
 
-SPREADMAP_PLUGIN("metrics", Layer, "layer", "1.3.0",
-                 "height map, R_q, V_s, solid thickness, packing, coverage and bare patches of a spread layer; "
-                 "optionally its size distribution against the feed and its packing against depth",
-                 &ops_table)
+SPREADMAP_METRICS_PLUGIN(Layer, "layer", "1.4.0",
+                         "height map, R_q, V_s, solid thickness, packing, coverage and bare patches of a spread layer; "
+                         "optionally its size distribution against the feed and its packing against depth")

@@ -1,5 +1,5 @@
 // surrogate/bpnn: the reference study's back-propagation network (Table 3) as a plugin.
-// The math lives in bpnn_model.{hpp,cpp}; this file declares the parameter schema and the C glue.
+// The math lives in bpnn_model.{hpp,cpp}; this file declares the parameter schema and the class the SDK wraps.
 //
 // Defaults and why: the study trains 1 hidden layer of 200 sigmoid units with plain gradient
 // descent at alpha = 1e-4. Measured (this machine, one core) on 35 of the 45 points of the smooth
@@ -15,10 +15,8 @@
 // 14 % and raises R_q's by 24 % without stopping folds; with `stopping_folds` it is the one that
 // works (a shared network stops when its noisiest output starts to learn noise). The default stays
 // the study's single network.
-#include <spreadmap/plugin.hpp>
-#include <spreadmap/surrogate.hpp>
+#include <spreadmap/surrogate_plugin.hpp>
 
-#include "../common/ops_glue.hpp"
 #include "bpnn_networks.hpp"
 
 namespace sm = spreadmap;
@@ -109,6 +107,5 @@ struct Bpnn {
 
 }  // namespace
 
-SPREADMAP_PLUGIN("surrogate", Bpnn, "bpnn", "1.1.0",
-                 "back-propagation neural network (study: 1 x 200 sigmoid units, L2 lambda = 0.1)",
-                 &ss::OpsGlue<Bpnn>::table)
+SPREADMAP_SURROGATE_PLUGIN(Bpnn, "bpnn", "1.1.0",
+                           "back-propagation neural network (study: 1 x 200 sigmoid units, L2 lambda = 0.1)")

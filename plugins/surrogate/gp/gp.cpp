@@ -1,14 +1,12 @@
 // surrogate/gp: Gaussian-process regression as a plugin (mean and standard deviation per output).
-// The math lives in gp_model.{hpp,cpp}; this file declares the parameter schema and the C glue.
+// The math lives in gp_model.{hpp,cpp}; this file declares the parameter schema and the class the SDK wraps.
 // fit_info() reports per output the fitted length scales (input units), signal and noise standard
 // deviations (output units: the host's train report shows them), the log marginal likelihood, and
 // `loo_mean`: closed-form leave-one-out predictions at the training rows (rows x outputs, output
 // units) for cross-validated errors. The noise is learnt, with a weak log-normal prior (gp_model.hpp),
 // one level for all rows or one per value of an input (noise_by_input).
-#include <spreadmap/plugin.hpp>
-#include <spreadmap/surrogate.hpp>
+#include <spreadmap/surrogate_plugin.hpp>
 
-#include "../common/ops_glue.hpp"
 #include "gp_model.hpp"
 
 namespace sm = spreadmap;
@@ -75,6 +73,5 @@ struct Gp {
 
 }  // namespace
 
-SPREADMAP_PLUGIN("surrogate", Gp, "gp", "1.0.0",
-                 "Gaussian-process regression (ARD squared-exponential or Matern 5/2), mean and std",
-                 &ss::OpsGlue<Gp>::table)
+SPREADMAP_SURROGATE_PLUGIN(Gp, "gp", "1.0.0",
+                           "Gaussian-process regression (ARD squared-exponential or Matern 5/2), mean and std")

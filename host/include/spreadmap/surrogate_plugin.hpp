@@ -1,5 +1,5 @@
-// Builds an sm_surrogate_ops_v1 table from the plugin's C++ class (the one SPREADMAP_PLUGIN
-// creates), so each plugin writes only its model glue. The class provides:
+// A surrogate plugin's C++ side: SurrogateGlue builds the sm_surrogate_ops_v1 table from the plugin's
+// class, so each plugin writes only its model; SPREADMAP_SURROGATE_PLUGIN ends its file. The class provides:
 //   void fit(const Eigen::MatrixXd &x, const Eigen::MatrixXd &y);
 //     or, to take the dataset's known noise: fit(x, y, noise_var) (noise_var empty when none is given)
 //   Eigen::MatrixXd predict(const Eigen::MatrixXd &x, Eigen::MatrixXd *std) const;  // std may be null
@@ -9,6 +9,7 @@
 // Exceptions never cross the C boundary: they become sm_error text. The returned strings live in
 // the instance until the next save()/fit_info() call on it (not thread-safe per instance).
 #pragma once
+#include <spreadmap/plugin.hpp>
 #include <spreadmap/surrogate.hpp>
 
 #include <Eigen/Dense>
@@ -16,13 +17,16 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-namespace spreadmap::surrogate {
-
+namespace spreadmap {
+namespace detail {
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-template <class Self> struct OpsGlue {
+}  // namespace detail
+
+template <class Self> struct SurrogateGlue {
+  using RowMajor = detail::RowMajor;
   static int fail(sm_error *err, const std::exception &e) {
-    ::spreadmap::detail::set_error(err, e.what());
+    detail::set_error(err, e.what());
     return 1;
   }
   static int fit(void *self, const sm_dataset_v1 *d, sm_error *err) {
@@ -83,4 +87,8 @@ template <class Self> struct OpsGlue {
   static constexpr sm_surrogate_ops_v1 table{Self::has_std, &fit, &predict, &save, &load, &fit_info, takes_noise_var};
 };
 
-}  // namespace spreadmap::surrogate
+}  // namespace spreadmap
+
+// The last line of a surrogate plugin: SPREADMAP_SURROGATE_PLUGIN(Class, "name", "1.0.0", "summary").
+#define SPREADMAP_SURROGATE_PLUGIN(CLASS, NAME, VERSION, SUMMARY) \
+  SPREADMAP_PLUGIN("surrogate", CLASS, NAME, VERSION, SUMMARY, &::spreadmap::SurrogateGlue<CLASS>::table)
