@@ -9,7 +9,7 @@ jobs="${SPREADMAP_BUILD_JOBS:-2}"
 
 scripts/setup.sh --tests
 
-echo "== layout: no include cycle between host/'s folders, no function over 80 lines in host/workflow/, no two files or types of one name"
+echo "== layout: no include cycle between host/'s folders, no function over 80 lines in host/workflow/, no two files or types of one name, no error prefix outside host/core/error.cpp"
 python3 scripts/check_layout.py
 
 # The CUDA kernels compile here whenever nvcc is present, GPU or not (AUTO leaves them out without a GPU).

@@ -1,5 +1,8 @@
 // `spreadmap plugins [NAME]`: the plugins found and, for one, its parameter schema.
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
+
+#include <spreadmap/surrogate.hpp>
 
 #include <boost/program_options.hpp>
 #include <cstdio>
@@ -11,11 +14,45 @@
 #include "core/schema.hpp"
 #include "core/suggest.hpp"
 #include "workflow/stage/command_line.hpp"
+#include "workflow/stage/plugin_needs.hpp"
 
 namespace spreadmap::cli {
 
 namespace po = boost::program_options;
 namespace sm = spreadmap;
+
+namespace {
+
+// What a plugin declares beyond its parameters, by which the stages choose it (plugin_needs.hpp).
+nlohmann::json capabilities(const sm::LoadedPlugin &p) {
+  nlohmann::json j = nlohmann::json::object();
+  const std::string kind = p.descriptor->kind;
+  if (kind == "metrics") {
+    j["gives"] = nlohmann::json::array();
+    for (const auto &m : sm::declared_metrics(p)) j["gives"].push_back({{"name", m.name}, {"unit", m.unit}, {"doc", m.doc}});
+  } else if (kind == "surrogate") {
+    const auto *ops = static_cast<const sm_surrogate_ops_v1 *>(p.descriptor->ops);
+    j["predictive_std"] = ops && ops->has_std;
+    j["takes_noise_var"] = ops && ops->takes_noise_var;
+  }
+  return j;
+}
+
+std::string describe_capabilities(const nlohmann::json &c) {
+  std::string text;
+  if (c.contains("gives")) {
+    text += c["gives"].empty() ? "  gives: nothing declared (plugin ABI before 10.2)\n" : "  gives (every evaluation):\n";
+    for (const auto &m : c["gives"])
+      text += fmt::format("    {:<22} {:<7} {}\n", m["name"].get<std::string>(), m["unit"].get<std::string>(),
+                          m["doc"].get<std::string>());
+  }
+  if (c.contains("predictive_std"))
+    text += std::string("  predictive standard deviation: ") + (c["predictive_std"].get<bool>() ? "yes" : "no") +
+            "; known noise of replicates: " + (c["takes_noise_var"].get<bool>() ? "used" : "ignored") + "\n";
+  return text;
+}
+
+}  // namespace
 
 int cmd_plugins(int argc, char **argv) {
   po::options_description d("plugins options");
@@ -55,11 +92,13 @@ int cmd_plugins(int argc, char **argv) {
       if (format == "json") {
         auto j = sm::schema_json(*pl.descriptor);
         j["file"] = pl.file.string();
+        j.update(capabilities(pl));
         all.push_back(j);
       } else if (name.empty()) {
         std::printf("%-10s %-16s %-8s %s\n", k.c_str(), n.c_str(), pl.descriptor->version, pl.descriptor->summary);
       } else {
-        std::cout << sm::describe_schema(*pl.descriptor) << "  file: " << pl.file.string() << "\n";
+        std::cout << sm::describe_schema(*pl.descriptor) << describe_capabilities(capabilities(pl))
+                  << "  file: " << pl.file.string() << "\n";
       }
     }
   }

@@ -49,8 +49,9 @@ Simulation<Real>::Simulation(const Domain &domain, ContactLaw pair_law, Settings
           "sphere would be pulled across a gap without moving); turn sleep off or set hamaker_constant: 0");
     if (law_history(pair_law) > 0)
       throw SetupError(
-          "settings: sleep needs a particle-particle law without history (the tangential springs of two "
-          "sleeping spheres would be lost); turn sleep off or use a law without history");
+          "settings: sleep needs a particle-particle law without history (the springs a contact keeps, "
+          "tangential or rolling, would be lost between two sleeping spheres); turn sleep off, or use a law "
+          "without history (no tangential spring, rolling_model: constant)");
     if (!(s.sleep_speed > 0) || s.sleep_checks == 0 || s.sleep_check_every == 0)
       throw SetupError("settings: sleep needs sleep_speed > 0, sleep_checks >= 1 and sleep_check_every >= 1");
   }

@@ -94,6 +94,34 @@ TEST(Cli, PluginsNamePrintsItsSchema) {
   EXPECT_TRUE(contains(r.out, "file: ")) << r.out;
 }
 
+// What the stages choose a plugin by (plugin_needs.hpp) is printed beside its parameters: a metrics
+// plugin's declared metrics with their units, a surrogate's predictive standard deviation.
+TEST(Cli, PluginsNamePrintsWhatTheStagesChooseItBy) {
+  const auto layer = cli({"plugins", "layer"});
+  ASSERT_EQ(layer.exit_code, 0) << layer.describe();
+  EXPECT_TRUE(contains(layer.out, "gives (every evaluation):")) << layer.out;
+  std::istringstream lines(layer.out);
+  std::set<std::string> declared;
+  for (std::string line; std::getline(lines, line);) {
+    std::istringstream words(line);
+    std::string name, unit;
+    if (line.rfind("    ", 0) == 0 && words >> name >> unit) declared.insert(name + " " + unit);
+  }
+  EXPECT_TRUE(declared.count("vs m^2/s") && declared.count("rq m")) << layer.out;
+  const auto gp = cli({"plugins", "gp"});
+  ASSERT_EQ(gp.exit_code, 0) << gp.describe();
+  EXPECT_TRUE(contains(gp.out, "predictive standard deviation: yes")) << gp.out;
+  const auto all = nlohmann::json::parse(cli({"plugins", "--format", "json"}).out);
+  for (const auto &p : all) {
+    if (p.at("kind") == "metrics") {
+      EXPECT_FALSE(p.at("gives").empty()) << p.dump();
+    }
+    if (p.at("kind") == "surrogate") {
+      EXPECT_TRUE(p.contains("predictive_std")) << p.dump();
+    }
+  }
+}
+
 TEST(Cli, PluginsOfOneKind) {
   const auto r = cli({"plugins", "--kind", "contact"});
   ASSERT_EQ(r.exit_code, 0) << r.describe();
