@@ -39,38 +39,42 @@ const LoadedPlugin &first_with(PluginRegistry &registry, const std::string &kind
                     "\n  install one (docs/plugins.md), or name one that does (spreadmap plugins --kind " + kind + ")");
 }
 
+std::vector<std::string> contract_names() {
+  std::vector<std::string> out;
+  for (const auto &c : metric_contract()) out.push_back(c.name);
+  return out;
+}
+
 }  // namespace
 
 const std::vector<ContractMetric> &metric_contract() {
   static const std::vector<ContractMetric> contract = {
-      {"vs", "m^2/s", "V_s, the volume spread rate"},
-      {"rq", "m", "R_q, the roughness of the layer"},
+      {"vs", "m^2/s"},  // V_s, the volume spread rate
+      {"rq", "m"},      // R_q, the roughness of the layer
   };
   return contract;
 }
 
-std::string contract_columns() {
-  std::string out;
-  for (const auto &c : metric_contract()) out += (out.empty() ? "" : ",") + std::string(c.name);
-  return out;
-}
+std::string contract_columns() { return join(contract_names(), ","); }
 
 std::vector<sm_metric_v1> declared_metrics(const LoadedPlugin &metrics) {
   const sm_plugin_v1 &d = *metrics.descriptor;
   if (abi_minor(d) < 2 || !d.ops) return {};
   const auto *ops = static_cast<const sm_metrics_ops_v1 *>(d.ops);
-  if (!ops->gives) return {};
-  return {ops->gives, ops->gives + ops->n_gives};
+  std::vector<sm_metric_v1> out;
+  for (uint32_t k = 0; ops->gives && k < ops->n_gives; ++k)
+    if (ops->gives[k].name && ops->gives[k].unit)
+      out.push_back({ops->gives[k].name, ops->gives[k].unit, ops->gives[k].doc ? ops->gives[k].doc : ""});
+  return out;
 }
 
 const LoadedPlugin &contract_metrics_plugin(PluginRegistry &registry, const std::string &who) {
-  std::string wanted;
-  for (const auto &c : metric_contract()) wanted += (wanted.empty() ? "" : " and ") + std::string(c.name);
-  return first_with(registry, "metrics", who, "declares the metrics " + wanted, [](const LoadedPlugin &p) {
+  return first_with(registry, "metrics", who, "declares the metrics " + join(contract_names(), " and "),
+                    [](const LoadedPlugin &p) {
     const auto gives = declared_metrics(p);
     return std::all_of(metric_contract().begin(), metric_contract().end(), [&](const ContractMetric &c) {
       return std::any_of(gives.begin(), gives.end(), [&](const sm_metric_v1 &m) {
-        return m.name && m.unit && std::string(m.name) == c.name && std::string(m.unit) == c.unit;
+        return std::string(m.name) == c.name && std::string(m.unit) == c.unit;
       });
     });
   });
@@ -88,10 +92,6 @@ std::vector<std::string> every_surrogate(PluginRegistry &registry) {
   for (const LoadedPlugin *p : loadable(registry, "surrogate")) out.push_back(p->descriptor->name);
   return out;
 }
-
-}  // namespace spreadmap
-
-namespace spreadmap {
 
 std::string first_surrogate(PluginRegistry &registry, const std::string &who) {
   return first_with(registry, "surrogate", who, "loads", [](const LoadedPlugin &) { return true; }).descriptor->name;

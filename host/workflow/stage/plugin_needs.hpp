@@ -15,12 +15,13 @@ namespace spreadmap {
 // The metrics the stages after characterise read (map, verify, adaptive design, report): the metric
 // contract every default metrics plugin meets.
 struct ContractMetric {
-  const char *name, *unit, *meaning;
+  const char *name, *unit;
 };
 const std::vector<ContractMetric> &metric_contract();
 std::string contract_columns();  // "vs,rq"
 
-// The metrics a plugin declares it gives whatever its parameters (ABI 10.2; none before).
+// The metrics a plugin declares it gives whatever its parameters (ABI 10.2; none before). Entries
+// without a name or unit are left out, a missing doc reads as empty.
 std::vector<sm_metric_v1> declared_metrics(const LoadedPlugin &metrics);
 
 // The metrics plugin whose declared metrics hold the contract, with the contract's units.
