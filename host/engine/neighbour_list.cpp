@@ -1,7 +1,5 @@
 #include <engine/neighbour_list.hpp>
 #include <engine/neighbour_listing.hpp>
-#include <spreadmap/contact.hpp>
-#include <spreadmap/pair_once.hpp>
 #include <engine/thread_team.hpp>
 
 #include <algorithm>
@@ -149,7 +147,7 @@ template <class Real> bool NeighbourList<Real>::pair_owners(int threads, std::ve
   cuts.resize(std::size_t(threads) + 1);
   for (int t = 0; t < threads; ++t) {
     std::uint32_t lo, hi;
-    spreadmap::detail::entry_balanced_range(start.data(), static_cast<std::uint32_t>(n), t, threads, &balance_, lo, hi);
+    detail::entry_balanced_range(start.data(), static_cast<std::uint32_t>(n), t, threads, &balance_, lo, hi);
     cuts[t] = lo;
     cuts[t + 1] = hi;
   }

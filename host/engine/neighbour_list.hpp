@@ -7,6 +7,7 @@
 // thread count.
 #pragma once
 #include <engine/cell_grid.hpp>
+#include <engine/pair_loops.hpp>
 #include <engine/particle_arrays.hpp>
 #include <spreadmap/batch.hpp>
 
@@ -21,19 +22,19 @@ template <class Real> class NeighbourList {
   // for particles it did not know); history values of pairs present in both lists are copied, new
   // pairs start at zero. Lists j when |x_i - x_j| < r_i + r_j + skin (minimum image).
   // with_mirror: also find each entry's mirror (the entry (j, i) of (i, j)) and size the scratch of
-  // the CPU loop that evaluates each pair once (laws without history, see spreadmap/pair_once.hpp).
+  // the CPU loop that evaluates each pair once (laws without history, see engine/pair_loops.hpp).
   void build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid, const std::vector<std::uint32_t> &cell_start,
              const std::vector<std::uint32_t> &cell, const Domain &domain, Real skin, unsigned history,
              bool with_mirror = false, const Real *mobile = nullptr);
 
-  PairList<Real> view() {
+  ListView<Real> view() {
     const bool once = has_mirror_ && !nbr.empty();
     if (!once) return {start.data(), nbr.data(), hist.data()};
     return {start.data(), nbr.data(),    hist.data(),   mirror.data(),     scratch.data(),
             upper.data(), pair_i.data(), pair_j.data(), first_pair.data(), &balance_};
   }
   std::size_t entries() const { return nbr.size(); }
-  // The particles whose pairs each of `threads` threads evaluates in the pair loop of pair_once.hpp
+  // The particles whose pairs each of `threads` threads evaluates in the pair loop of pair_loops.hpp
   // (thread t: [cuts[t], cuts[t + 1])), when that loop is used; false otherwise.
   bool pair_owners(int threads, std::vector<std::size_t> &cuts) const;
   // After start/nbr were replaced (a checkpoint): finds the mirrors again when asked.

@@ -2,7 +2,7 @@
 // backends list the same pairs in the same order (the order each particle sums its forces in).
 #pragma once
 #include <engine/cell_grid.hpp>
-#include <spreadmap/contact.hpp>
+#include <engine/minimum_image.hpp>
 
 #include <cstdint>
 
@@ -56,9 +56,9 @@ std::uint32_t deep_overlap_pairs(const std::uint32_t *pair_i, const std::uint32_
   std::uint32_t bad = 0;
   for (std::uint64_t u = lo; u < hi; ++u) {
     const std::uint32_t i = pair_i[u], j = pair_j[u];
-    const Real dx = spreadmap::detail::wrap_axis<PX>(x[i] - x[j], len[0]),
-               dy = spreadmap::detail::wrap_axis<PY>(y[i] - y[j], len[1]),
-               dz = spreadmap::detail::wrap_axis<PZ>(z[i] - z[j], len[2]);
+    const Real dx = wrap_axis<PX>(x[i] - x[j], len[0]),
+               dy = wrap_axis<PY>(y[i] - y[j], len[1]),
+               dz = wrap_axis<PZ>(z[i] - z[j], len[2]);
     const Real smaller = r[i] < r[j] ? r[i] : r[j];
     const Real allowed = (r[i] + r[j]) - 2 * limit * smaller;
     bad += dx * dx + dy * dy + dz * dz < allowed * allowed ? 1u : 0u;

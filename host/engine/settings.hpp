@@ -35,7 +35,7 @@ struct Settings {
   std::uint32_t check_every = 10;
 
   // Laws without history: the CPU loop evaluates each touching pair once and gives the other
-  // particle the mirror image (spreadmap/pair_once.hpp). Bitwise the same results as evaluating every
+  // particle the mirror image (engine/pair_loops.hpp). Bitwise the same results as evaluating every
   // list entry for any law whose answer seen from j is the mirror of that seen from i (all laws
   // written with vector operations), and about twice as fast. false: every entry (for tests).
   bool pairs_once = true;

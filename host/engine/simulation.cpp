@@ -17,8 +17,10 @@ namespace spreadmap::engine {
 
 namespace {
 void check_law(const ContactLaw &law, const std::string &what) {
+  const bool queues = law.abi_minor < 3 || (law.ops && law.ops->pair_queue_f64 && law.ops->pair_queue_f32 &&
+                                             law.ops->wall_queue_f64 && law.ops->wall_queue_f32);
   if (!law.ops || !law.ops->natural_frequency || !law.ops->damping_ratio || !law.ops->makes_torque ||
-      !law.ops->pairs_f64 || !law.ops->pairs_f32 || !law.ops->walls_f64 || !law.ops->walls_f32)
+      !law.ops->pairs_f64 || !law.ops->pairs_f32 || !law.ops->walls_f64 || !law.ops->walls_f32 || !queues)
     throw SetupError(
         fmt::format("{}: the contact law has no complete ops table (a null function pointer); "
                     "bind a contact plugin built with this SDK",
@@ -198,7 +200,8 @@ template <class Real> std::size_t Simulation<Real>::add_plane_wall(PlaneWall wal
 template <class Real> std::size_t Simulation<Real>::add_geometry(GeometryWall geometry) {
   host_changes();
   check_law(geometry.law, "geometry '" + geometry.name + "'");
-  if (!geometry.ops || !geometry.ops->contacts_f64 || !geometry.ops->contacts_f32)
+  if (!geometry.ops || !geometry.ops->contacts_f64 || !geometry.ops->contacts_f32 ||
+      (geometry.abi_minor >= 3 && (!geometry.ops->contacts_range_f64 || !geometry.ops->contacts_range_f32)))
     throw SetupError(fmt::format("geometry '{}': no contacts function in its ops table", geometry.name));
   GeometrySlot<Real> s;
   s.geometry = std::move(geometry);

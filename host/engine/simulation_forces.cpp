@@ -1,5 +1,6 @@
 // Simulation's forces: the pair law over the list, the plane walls and the geometries (spreaders).
 #include <engine/cell_grid.hpp>
+#include <engine/contact_loops.hpp>
 #include <engine/errors.hpp>
 #include <engine/simulation.hpp>
 #include <engine/neighbour_listing.hpp>
@@ -45,7 +46,6 @@ template <class Real> Particles<Real> Simulation<Real>::view() {
   }
   v.dt = Real(state_.dt);
   v.t = Real(state_.time);
-  v.team = this_thread_team();
   return v;
 }
 
@@ -126,8 +126,7 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> 
   if (!s.touched) return;
   WallContacts<Real> w = s.view(n);
   w.gap = Real(range);
-  if constexpr (std::is_same_v<Real, double>) plane.wall.law.ops->walls_f64(plane.wall.law.self, &view, &w);
-  else plane.wall.law.ops->walls_f32(plane.wall.law.self, &view, &w);
+  wall_forces(plane.wall.law, view, w);
 }
 
 // One wall's law over a subset of particles gathered beforehand, then the forces added back. A small
@@ -135,8 +134,7 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> 
 template <class Real>
 void Simulation<Real>::subset_forces(const ContactLaw &law, const Particles<Real> &sv, WallContacts<Real> &sw) {
   const TeamSizeScope serial(sw.n < subset_parallel_from ? 1 : 0);
-  if constexpr (std::is_same_v<Real, double>) law.ops->walls_f64(law.self, &sv, &sw);
-  else law.ops->walls_f32(law.self, &sv, &sw);
+  wall_forces(law, sv, sw);
 }
 
 template <class Real> void Simulation<Real>::compute_forces(StepProfile *prof) {
@@ -164,9 +162,7 @@ template <class Real> void Simulation<Real>::compute_forces(StepProfile *prof) {
   state_.forces_valid = true;
   if (n == 0) return;
   const Particles<Real> v = view();
-  const PairList<Real> l = state_.list.view();
-  if constexpr (std::is_same_v<Real, double>) state_.pair_law.ops->pairs_f64(state_.pair_law.self, &v, &l);
-  else state_.pair_law.ops->pairs_f32(state_.pair_law.self, &v, &l);
+  pair_forces(state_.pair_law, v, state_.list.view());
   lap(&StepProfile::pairs);  // with the zeroing of the forces above
 
   for (auto &pl : state_.planes) {
@@ -222,8 +218,7 @@ template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot<Rea
   v.r = inflated_radius_.data();
   v.t = Real(state_.time + ge.geometry.time_shift);
   WallContacts<Real> w = ge.slot.view(n);
-  if constexpr (std::is_same_v<Real, double>) ops->contacts_f64(ge.geometry.self, &v, &w);
-  else ops->contacts_f32(ge.geometry.self, &v, &w);
+  geometry_contacts(ge.geometry, v, w);
   for (std::size_t i = 0; i < n; ++i)
     if (w.overlap[i] > 0) ge.near.push_back(static_cast<std::uint32_t>(i));
   std::fill(ge.slot.overlap.begin(), ge.slot.overlap.end(), Real(0));
@@ -245,18 +240,12 @@ template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot<Rea
 // Contacts and forces of one geometry, over its near particles only when they are known.
 template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot<Real> &ge, const Particles<Real> &v) {
   auto &p = state_.particles;
-  const auto *ops = ge.geometry.ops;
   const ContactLaw &law = ge.geometry.law;
   auto evaluate = [&](const Particles<Real> &pv, WallContacts<Real> &w) {
     Particles<Real> at = pv;  // the geometry's own clock
     at.t = Real(state_.time + ge.geometry.time_shift);
-    if constexpr (std::is_same_v<Real, double>) {
-      ops->contacts_f64(ge.geometry.self, &at, &w);
-      law.ops->walls_f64(law.self, &pv, &w);
-    } else {
-      ops->contacts_f32(ge.geometry.self, &at, &w);
-      law.ops->walls_f32(law.self, &pv, &w);
-    }
+    geometry_contacts(ge.geometry, at, w);
+    wall_forces(law, pv, w);
   };
   if (!ge.near_valid) {
     WallContacts<Real> w = ge.slot.view(p.size());

@@ -126,7 +126,7 @@ template <class Real> void Simulation<Real>::check_overlaps() {
   const Real limit = Real(state_.settings.overlap_limit);
   std::uint32_t bad = 0;
   const Real *x = p.x.data(), *y = p.y.data(), *z = p.z.data(), *r = p.r.data();
-  const PairList<Real> l = state_.list.view();  // its upper entries, when the list keeps them
+  const ListView<Real> l = state_.list.view();  // its upper entries, when the list keeps them
   run_team(this_thread_team(), [&](TeamSlot team) {
     std::uint32_t mine = 0;
     if (l.pair_i) {  // the flat sequence of upper pairs: one loop, vectorised

@@ -1,10 +1,10 @@
-// The host's team of threads for the loops of a step, lent to plugins through Particles::team.
+// The engine's team of threads for the loops of a step.
 // Its threads wait for work and for each other by spinning in user space, then sleep: an OpenMP
 // region or barrier costs a futex system call (libgomp wakes waiters that way even when they spin),
 // and on a machine where system calls are dear (a virtual machine with page-table isolation) that
 // call and what it evicts were a good part of a two-thread step.
 #pragma once
-#include <spreadmap/team.hpp>
+#include <engine/team.hpp>
 
 #include <atomic>
 #include <thread>

@@ -72,6 +72,7 @@ struct GeometryWall {
   ContactLaw law;
   std::string name = "geometry";  // for messages: the plugin's kind/name
   double time_shift = 0;          // [s]
+  std::uint32_t abi_minor = SPREADMAP_PLUGIN_ABI_MINOR;  // of the plugin (before 10.3: its whole-list call)
 };
 
 }  // namespace spreadmap::engine

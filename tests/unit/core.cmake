@@ -46,6 +46,11 @@ endfunction()
 spreadmap_older_abi_plugin(fixture_abi_10_0 KIND contact NAME hooke_history MINOR 0
   SOURCES ${PROJECT_SOURCE_DIR}/plugins/contact/hooke_history/hooke_history.cpp)
 set_property(GLOBAL APPEND PROPERTY SPREADMAP_FIXTURE_TARGETS fixture_abi_10_0)
+# A law without history built for ABI 10.2, before the engine handed laws queues of contacts (10.3):
+# this host calls its whole-list loops.
+spreadmap_older_abi_plugin(fixture_abi_10_2 KIND contact NAME hooke_slider MINOR 2
+  SOURCES ${PROJECT_SOURCE_DIR}/plugins/contact/hooke_slider/hooke_slider.cpp)
+set_property(GLOBAL APPEND PROPERTY SPREADMAP_FIXTURE_TARGETS fixture_abi_10_2)
 get_property(SPREADMAP_FIXTURE_TARGETS GLOBAL PROPERTY SPREADMAP_FIXTURE_TARGETS)
 
 spreadmap_test(unit core

@@ -1,8 +1,8 @@
 // The host-device bodies of the SDK loops (pair_forces_on, wall_force_on, geometry_contact_of), run on
 // the CPU with the in-tree laws and spreaders. A CUDA kernel runs them one thread per particle in an
 // order nobody controls; these tests replay such a schedule on the CPU and check what the GPU relies
-// on: each body writes only its own particle and its own list entries, so any schedule gives the
-// OpenMP loop's exact bits; pair forces are equal and opposite; apart pairs forget their history.
+// on: each body writes only its own particle and its own list entries, so any schedule gives the exact
+// bits of the particles in order; pair forces are equal and opposite; apart pairs forget their history.
 #include <gtest/gtest.h>
 #include <spreadmap/contact.hpp>
 #include <spreadmap/geometry.hpp>
@@ -37,6 +37,11 @@ template <class Body> void gpu_schedule(std::uint32_t n, Body body) {
       if (const std::uint32_t i = b * block + t; i < n) body(i);
 }
 
+// The particles in increasing order: the loop a host before ABI 10.3 calls.
+template <class Body> void in_order(std::uint32_t n, Body body) {
+  for (std::uint32_t i = 0; i < n; ++i) body(i);
+}
+
 template <class Law> sm::test::PackingSpec spec_for() {
   sm::test::PackingSpec s;
   s.n = 1500;
@@ -47,7 +52,9 @@ template <class Law> sm::test::PackingSpec spec_for() {
 template <class Law> void expect_schedule_independent_pairs(const Law &law) {
   auto loop = sm::test::make_packing<double>(spec_for<Law>());
   auto kernel = loop;
-  sm::pair_loop(law, loop.particles(), loop.pairs());
+  const auto lp = loop.particles();
+  const auto ll = loop.pairs();
+  in_order(lp.n, [&](std::uint32_t i) { sm::pair_forces_on(law, lp, ll, i); });
   const auto p = kernel.particles();
   const auto l = kernel.pairs();
   gpu_schedule(p.n, [&](std::uint32_t i) { sm::pair_forces_on(law, p, l, i); });
@@ -67,7 +74,9 @@ template <class Law> void expect_schedule_independent_walls(const Law &law) {
   auto kernel = loop;
   auto lw = sm::test::make_wall_records(loop, spec);
   auto kw = lw;
-  sm::wall_loop(law, loop.particles(), lw.view());
+  const auto lp = loop.particles();
+  const auto lwv = lw.view();
+  in_order(lp.n, [&](std::uint32_t i) { sm::wall_force_on(law, lp, lwv, i); });
   const auto p = kernel.particles();
   const auto w = kw.view();
   gpu_schedule(p.n, [&](std::uint32_t i) { sm::wall_force_on(law, p, w, i); });
@@ -83,7 +92,9 @@ template <class Law> void expect_momentum_conserved(const Law &law) {
   auto spec = spec_for<Law>();
   spec.history = 0;
   auto k = sm::test::make_packing<double>(spec);
-  sm::pair_loop(law, k.particles(), k.pairs());
+  const auto kp = k.particles();
+  const auto kl = k.pairs();
+  in_order(kp.n, [&](std::uint32_t i) { sm::pair_forces_on(law, kp, kl, i); });
   for (const auto *f : {&k.fx, &k.fy, &k.fz}) {
     const double total = std::accumulate(f->begin(), f->end(), 0.0);
     double magnitude = 0;
@@ -151,7 +162,8 @@ template <class Geometry> void expect_geometry_records(const Geometry &g) {
   auto lw = sm::test::make_wall_records(loop, spec);
   auto kw = lw;
   auto lwv = lw.view();
-  sm::geometry_loop(g, loop.particles(), lwv);
+  const auto lp = loop.particles();
+  sm::geometry_loop(g, lp, lwv, 0, lp.n);
   const auto p = kernel.particles();
   const auto w = kw.view();
   gpu_schedule(p.n, [&](std::uint32_t i) { sm::geometry_contact_of(g, p, w, i); });

@@ -1,5 +1,5 @@
 // The engine's fast paths give exactly the results of the plain ones: a law without history
-// evaluated once per pair (spreadmap/pair_once.hpp) against every list entry, for any number of
+// evaluated once per pair (engine/pair_loops.hpp) against every list entry, for any number of
 // threads, with every instruction set the processor runs; planes evaluated in place against a gathered copy of the
 // touching particles; a geometry evaluated for its near particles only against every particle; sleeping particles
 // (Settings::sleep): no bit changes where none may sleep, asleep means exactly still, woken by impacts.
@@ -37,7 +37,7 @@ struct TestSlider {
     sm::ContactForce<Real> f;
     f.normal = Real(k) * c.overlap - Real(2 * zeta) * std::sqrt(Real(k) * c.m_eq) * c.v_n;
     const Real fn = f.normal < 0 ? -f.normal : f.normal;
-    // selects, no branch, as hooke_slider: the pair loop of pair_once.hpp runs it on SIMD lanes
+    // selects, no branch, as hooke_slider: evaluate_pairs runs it on SIMD lanes
     const Real slip = sm::norm(c.v_t);
     const Real slide = -sm::min(Real(mu) * fn, c.m_eq * Real(gamma) * slip) / slip;
     f.tangent = {slip > 0 ? c.v_t.x * slide : 0, slip > 0 ? c.v_t.y * slide : 0, slip > 0 ? c.v_t.z * slide : 0};
@@ -138,7 +138,7 @@ TEST(EnginePairsOnce, SameBitsAsEveryEntryForAnyThreadCount) {
 // particles a thread, so most of them wait for records.
 TEST(EnginePairsOnce, SameBitsOnATeamLargerThanTheBalanceTunes) {
   Scene scene;
-  const int many = sm::PairBalance::max_threads + 3;
+  const int many = PairBalance::max_threads + 3;
   auto run = [&](int threads) { return scene.run(&Settings::pairs_once, true, threads, 150); };
   const auto one = run(1), crowd = run(many);
   EXPECT_TRUE(same_state(*one, *crowd)) << "1 vs " << many << " threads differ";

@@ -108,7 +108,7 @@ std::vector<double> row_on_floor(const sm::engine::ContactLaw &law, std::uint64_
 
 }  // namespace
 
-// A plugin built for ABI 10.0 (tests/unit/core.cmake) has no history_of in its ops table: this 10.1 host
+// A plugin built for ABI 10.0 (tests/unit/core.cmake) has no history_of in its ops table: this host
 // reads the table's own count and steps the law bit for bit as the plugin of this build does.
 TEST(PluginLaw, APluginOfTheOlderMinorAbiLoadsAndStepsBitForBit) {
   const nlohmann::json params = {{"friction", 0.5}, {"rolling_friction", 0.05}};
@@ -128,6 +128,23 @@ TEST(PluginLaw, APluginOfTheOlderMinorAbiLoadsAndStepsBitForBit) {
     load_contact_law("hooke_history", {{"rolling_friction", 0.1}, {"rolling_model", "epsd"}}, {older});
   });
   EXPECT_TRUE(contains(refused, "rolling_model epsd needs plugin ABI 10.1")) << refused;
+}
+
+// A law built for ABI 10.2 has no queue functions (10.3): this host hands it the whole list and the
+// wall's records, without the engine's schedule (the list's mirror and the threads stay the engine's),
+// and its loop over every entry gives the bits of the queues that evaluate each pair once.
+TEST(PluginLaw, ALawBuiltBeforeTheQueuesStepsBitForBitThroughItsWholeListLoop) {
+  const nlohmann::json params = {{"friction", 0.5}, {"rolling_friction", 0.05}};
+  const std::filesystem::path older = std::filesystem::path(SPREADMAP_FIXTURE_DIR) / "abi_10_2";
+  const auto old_law = load_contact_law("hooke_slider", params, {older});
+  const auto new_law = load_contact_law("hooke_slider", params);
+  ASSERT_EQ(old_law.file().parent_path(), older / "contact");
+  EXPECT_EQ(old_law.law().abi_minor, 2u);
+  EXPECT_EQ(new_law.law().abi_minor, SPREADMAP_PLUGIN_ABI_MINOR);
+  const std::array<double, 3> slope{2, 0, -9.81};
+  const auto before = row_on_floor(old_law.law(), 3000, slope), now = row_on_floor(new_law.law(), 3000, slope);
+  EXPECT_EQ(before, now);
+  EXPECT_GT(std::abs(now[9]), 1e-3) << "the spheres move: the test compares forces, not rest";
 }
 
 // Through the engine (wall and pair records with the spring's history): on a slope flatter than mu_r the

@@ -1,12 +1,12 @@
 // The host's thread team (engine/thread_team.hpp) and the pair loop's balance of work between its
-// threads (detail::retune in spreadmap/pair_once.hpp): every thread of a run gets its place once,
+// threads (detail::retune in engine/pair_loops.hpp): every thread of a run gets its place once,
 // work is shared exactly, a barrier separates phases, a run inside a run takes its caller alone, the
 // team grows and shrinks with the OpenMP setting, loops follow the cuts the host sets for a step, the
 // cuts move to where the threads finish together, and the records of the particles that wait for
 // the barrier are summed once whichever thread sums them.
 #include <engine/thread_team.hpp>
 #include <spreadmap/contact.hpp>
-#include <spreadmap/pair_once.hpp>
+#include <engine/pair_loops.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -104,10 +104,10 @@ TEST(ThreadTeam, ARunInsideARunTakesItsCallerAlone) {
 TEST(PairBalance, CutsMoveHalfWayToEqualTimes) {
   // Two threads with equal shares; thread 0 took 3 s, thread 1 took 1 s: speeds 1/6 and 1/2 of
   // the work per second, equal times at a cut of 1/4; half way from 1/2 is 3/8.
-  sm::PairBalance b{};
+  sm::engine::PairBalance b{};
   b.seconds[0] = 3;
   b.seconds[1] = 1;
-  sm::detail::retune(b, 2);
+  sm::engine::detail::retune(b, 2);
   EXPECT_EQ(b.threads, 2);
   EXPECT_DOUBLE_EQ(b.cut[0], 0);
   EXPECT_DOUBLE_EQ(b.cut[1], 0.375);
@@ -115,7 +115,7 @@ TEST(PairBalance, CutsMoveHalfWayToEqualTimes) {
   // Work that costs 3 units per entry in the first half of the list and 1 in the second: the
   // threads finish together when the cut is at 1/4, whatever thread count tunes it.
   for (int threads : {2, 3}) {
-    b = sm::PairBalance{};
+    b = sm::engine::PairBalance{};
     auto cost = [](double from, double to) {  // time of the entries [from, to)
       auto work = [](double x) { return x < 0.5 ? 3 * x : 1.5 + (x - 0.5); };
       return work(to) - work(from);
@@ -126,7 +126,7 @@ TEST(PairBalance, CutsMoveHalfWayToEqualTimes) {
         const double hi = b.threads == threads ? b.cut[t + 1] : double(t + 1) / threads;
         b.seconds[t] = cost(lo, hi);
       }
-      sm::detail::retune(b, threads);
+      sm::engine::detail::retune(b, threads);
     }
     const double each = cost(0, 1) / threads;
     for (int t = 0; t < threads; ++t)
@@ -175,7 +175,7 @@ TEST(PairLoop, EveryWaitingParticleGetsItsRecordsOnceWhicheverThreadSumsThem) {
     std::vector<double> scratch(nbr.size() * 6), f(12 * 6, 0.0);
     for (std::size_t k = 0; k < nbr.size(); ++k)
       for (int c = 0; c < 6; ++c) scratch[k * 6 + c] = double(k + 1);
-    sm::PairList<double> list{start.data(), nbr.data(), nullptr};
+    sm::engine::ListView<double> list{start.data(), nbr.data(), nullptr};
     list.scratch = scratch.data();
     sm::Particles<double> p{};
     p.n = 12;
@@ -185,9 +185,8 @@ TEST(PairLoop, EveryWaitingParticleGetsItsRecordsOnceWhicheverThreadSumsThem) {
     p.tx = &f[36];
     p.ty = &f[48];
     p.tz = &f[60];
-    p.team = this_thread_team();
     std::vector<bool> waits(12, false);
-    std::vector<sm::detail::WaitingSpan> spans(threads);
+    std::vector<sm::engine::detail::WaitingSpan> spans(threads);
     for (int t = 0; t < threads; ++t) {  // as the pair loop finds them: up to its last waiting particle
       const auto r = sm::team_share(12, sm::TeamSlot{t, threads});
       spans[t] = {std::uint32_t(r.lo), std::uint32_t(r.lo)};
@@ -197,7 +196,7 @@ TEST(PairLoop, EveryWaitingParticleGetsItsRecordsOnceWhicheverThreadSumsThem) {
           spans[t].end = std::uint32_t(i + 1);
         }
     }
-    sm::run_team(p.team, [&](sm::TeamSlot slot) { sm::detail::add_waiting_records(p, list, spans.data(), slot); });
+    sm::run_team(this_thread_team(), [&](sm::TeamSlot slot) { sm::engine::detail::add_waiting_records(p, list, spans.data(), slot); });
     for (std::uint32_t i = 0; i < 12; ++i) {
       double expected = 0;
       for (std::uint32_t k = start[i]; k < start[i + 1]; ++k) expected += waits[i] ? double(k + 1) : 0.0;

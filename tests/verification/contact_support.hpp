@@ -1,6 +1,6 @@
 // Test support for contact laws: schema-default parameter values, and a minimal integrator for a few
-// spheres and plane walls that drives a law through the SDK's own pair_loop/wall_loop (so the
-// contact-point kinematics and torque arms are the engine's). Velocity Verlet with the forces
+// spheres and plane walls that drives a law through the SDK's own per-particle bodies (pair_forces_on,
+// wall_force_on: the contact-point kinematics and torque arms are the engine's, the bits its queues give). Velocity Verlet with the forces
 // evaluated at the new positions and the half-step velocities (translation and spin), as the engine
 // does: v += a dt/2; x += v dt; F(x, v); v += a dt/2. The law sees the state in `Real` (double or
 // float, as the engine's precisions); the integrator keeps it in double.
@@ -169,7 +169,9 @@ template <class Law, class Real = double> class Integrator {
                       Real(dt_),
                       Real(t_)};
     PairList<Real> list{start_.data(), nbr_.data(), pair_hist_.data()};
-    in_loop_form(law_, [&](const auto &form) { pair_loop(form, p, list); });
+    in_loop_form(law_, [&](const auto &form) {
+      for (std::uint32_t i = 0; i < p.n; ++i) pair_forces_on(form, p, list, i);
+    });
     for (std::size_t k = 0; k < walls_.size(); ++k) {
       for (std::size_t i = 0; i < n; ++i) {
         w_overlap_[i] = Real(wall_overlap(i, k));
@@ -187,7 +189,9 @@ template <class Law, class Real = double> class Integrator {
                            w_vz_.data(),
                            wall_hist_[k].data()};
       w.gap = Real(1);  // the records hold every gap exactly: a law reaching across one sees it up to its range
-      in_loop_form(law_, [&](const auto &form) { wall_loop(form, p, w); });
+      in_loop_form(law_, [&](const auto &form) {
+        for (std::uint32_t i = 0; i < w.n; ++i) wall_force_on(form, p, w, i);
+      });
     }
   }
 

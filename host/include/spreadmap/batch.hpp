@@ -1,12 +1,14 @@
-// Structure-of-arrays views the engine hands to plugin loops, one call per step per batch.
-// Plain standard-layout structs (safe across the C boundary); pointers are host memory on the CPU
-// backend and device memory on the CUDA backend. The engine owns every array.
+// Structure-of-arrays views the engine hands to plugin loops, and the queues of contacts it hands to a
+// law (ABI 10.3). Plain standard-layout structs (safe across the C boundary); pointers are host memory
+// on the CPU backend and device memory on the CUDA backend. The engine owns every array.
+//
+// How the work is shared between threads is the engine's alone: it walks the list, finds the pairs
+// within reach and hands a law queues of them, one call per queue (contact.hpp). No field here says how
+// the engine schedules its loops, so tuning them changes no struct a plugin reads.
 #pragma once
 #include <cstdint>
 
 namespace spreadmap {
-
-struct Team;  // team.hpp
 
 // Particle state. Read-only for plugins except the force/torque accumulators.
 template <class Real> struct Particles {
@@ -22,39 +24,21 @@ template <class Real> struct Particles {
   std::uint8_t periodic[3];    // 1: periodic along that axis (minimum image)
   Real dt;                     // time step [s]
   Real t;                      // time at which forces are evaluated [s]
-  const Team *team = nullptr;  // the host's threads, for the loop to run on (null: an OpenMP region)
-};
-
-// How the threads of the pair loop share its list entries, tuned by the loop from how long each
-// thread took: the split decides which thread evaluates a pair, never the result (pair_once.hpp).
-// Engine-owned, zero at first.
-struct PairBalance {
-  static constexpr int max_threads = 64;
-  std::int32_t threads;         // cut is for this many threads (otherwise equal shares)
-  double cut[max_threads + 1];  // thread t takes the entries from cut[t] to cut[t + 1] x all
-  double seconds[max_threads];  // each thread's last sweep
+  const void *legacy_team = nullptr;  // ABI 10.0-10.2: the host's threads; always null since 10.3
 };
 
 // Full (both-direction) neighbour list in CSR form: the neighbours of particle i are
 // nbr[start[i] .. start[i+1]), in increasing index order. Each particle sums its own forces in this
 // fixed order, so results do not depend on the number of threads. hist holds `history` values per
-// list entry; the engine carries them across list rebuilds.
-// Optional (null when absent), for laws without history on the CPU (pair_once.hpp): mirror[k] is
-// the entry (j, i) of entry k = (i, j); upper[i] is particle i's first entry with j > i. The upper
-// entries of all particles, in list order, also stand as one flat sequence: pair u is (pair_i[u],
-// pair_j[u]), and particle i's are pairs [first_pair[i], first_pair[i + 1]). scratch holds
-// 6 * (entries + particles) values: a record of 6 values per entry, then 6 running sums per
-// particle; all of it must be zero on entry, and the loop leaves it zero on exit. balance: see
-// PairBalance above.
+// list entry; the engine carries them across list rebuilds. The whole-list loops read it (the CUDA
+// kernels, and the CPU tables of older hosts).
 template <class Real> struct PairList {
   const std::uint32_t *start;
   const std::uint32_t *nbr;
   Real *hist;
-  const std::uint32_t *mirror = nullptr;
-  Real *scratch = nullptr;
-  const std::uint32_t *upper = nullptr;
-  const std::uint32_t *pair_i = nullptr, *pair_j = nullptr, *first_pair = nullptr;
-  PairBalance *balance = nullptr;  // null: equal shares of the entries
+  // ABI 10.0-10.2: the CPU loop's schedule (mirror, scratch, upper, flat pairs, balance). Always null
+  // since 10.3, so that an older plugin takes its loop over every entry, which gives the same bits.
+  const void *legacy[7] = {};
 };
 
 // One wall contact per particle and wall, stored densely by particle index: particle i touches the
@@ -69,6 +53,29 @@ template <class Real> struct WallContacts {
   Real *vx, *vy, *vz;
   Real *hist;
   Real gap = 0;  // [m]
+};
+
+// ABI 10.3. A queue of pairs within the law's reach, in the order the engine adds their forces. Pair q
+// is (i[q], j[q]) with d = (dx, dy, dz)[q] = x_i - x_j (minimum image). The law writes the force and
+// torque on i to on_i[c * stride + q] (c: force x, y, z, torque x, y, z) and, when on_j is given (laws
+// without history: each touching pair is queued once), the same for j from the same evaluation. A law
+// with history finds the pair's values at hist + entry[q] * its history count, and is given on_j null.
+template <class Real> struct PairQueue {
+  std::uint32_t n, stride;
+  const std::uint32_t *i, *j;
+  const Real *dx, *dy, *dz;
+  const std::uint32_t *entry;  // list entries (laws with history); may be null otherwise
+  Real *hist;
+  Real *on_i, *on_j;
+};
+
+// ABI 10.3. A queue of particles interacting with one wall (their records in WallContacts, history at
+// hist + i[q] * the law's history count): the law writes particle i[q]'s force and torque to
+// out[c * stride + q].
+template <class Real> struct WallQueue {
+  std::uint32_t n, stride;
+  const std::uint32_t *i;
+  Real *out;
 };
 
 }  // namespace spreadmap

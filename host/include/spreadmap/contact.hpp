@@ -1,5 +1,6 @@
 // Contact laws: a trivially copyable functor of host-device code, instantiated by the SDK's loops
-// inside the plugin. No virtual call per contact: the engine calls the plugin once per step per batch.
+// inside the plugin. No virtual call per contact: the CPU engine calls the plugin once per queue of up
+// to 64 contacts (evaluate_pairs, evaluate_walls), the CUDA backend once per step.
 //
 // A law provides:
 //   static constexpr sm_param_v1 params[];        schema
@@ -13,13 +14,12 @@
 // whose cohesion reaches across a gap (cohesion.range > 0) is given pairs and wall records down to
 // overlap = -range, and must then return the attraction alone there (no repulsion, friction or history).
 // A law without history whose operator() decides per contact with selects (a ? b : c on computed
-// values) rather than branches runs on SIMD lanes in the CPU pair loop (pair_once.hpp).
+// values) rather than branches runs on SIMD lanes when it evaluates a queue (evaluate_pairs below).
 #pragma once
 #include <spreadmap/batch.hpp>
 #include <spreadmap/hd.hpp>
 #include <spreadmap/plugin.hpp>
 #include <spreadmap/simd.hpp>
-#include <spreadmap/team.hpp>
 
 #include <concepts>
 #include <type_traits>
@@ -59,6 +59,16 @@ typedef struct sm_contact_ops_v1 {
 #if SPREADMAP_TARGET_ABI_MINOR >= 1
   // ABI 10.1: history values per contact of this instance (`history` is then the most any instance keeps).
   uint32_t (*history_of)(const void *self);
+#endif
+#if SPREADMAP_TARGET_ABI_MINOR >= 3
+  // ABI 10.3: the CPU engine's loops hand the law queues of contacts (batch.hpp) and keep to themselves
+  // how they walk the list and share it between threads. A host before 10.3 calls pairs_* and walls_*.
+  void (*pair_queue_f64)(const void *self, const Particles<double> *p, const PairQueue<double> *q);
+  void (*pair_queue_f32)(const void *self, const Particles<float> *p, const PairQueue<float> *q);
+  void (*wall_queue_f64)(const void *self, const Particles<double> *p, const WallContacts<double> *w,
+                         const WallQueue<double> *q);
+  void (*wall_queue_f32)(const void *self, const Particles<float> *p, const WallContacts<float> *w,
+                         const WallQueue<float> *q);
 #endif
 } sm_contact_ops_v1;
 
@@ -128,9 +138,9 @@ SM_HD ContactState<Real> pair_contact_state(const Particles<Real> &p, std::uint3
   return c;
 }
 
-// The forces on particle i from its neighbours, summed in list order and added to its accumulators.
-// The body of both backends' pair loops (the team's loop below, one GPU thread per particle under
-// CUDA), so the contact kinematics exist once.
+// The forces on particle i from its neighbours, summed in list order and added to its accumulators:
+// one GPU thread per particle under CUDA, and the whole-list loop of hosts before ABI 10.3. The CPU
+// engine's queues give the same bits (each particle's contributions added in list order).
 template <class Law, class Real>
 SM_HD void pair_forces_on(const Law &law, const Particles<Real> &p, const PairList<Real> &list, std::uint32_t i) {
   const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
@@ -156,18 +166,6 @@ SM_HD void pair_forces_on(const Law &law, const Particles<Real> &p, const PairLi
   p.tz[i] += torque.z;
 }
 
-// Evaluates each touching pair once when the engine gives the list's mirror (pair_once.hpp).
-template <class Law, class Real>
-void pair_loop_once(const Law &law, const Particles<Real> &p, const PairList<Real> &list);
-
-// Particle-particle loop: each particle sums its own forces over its neighbours in list order.
-template <class Law, class Real> void pair_loop(const Law &law, const Particles<Real> &p, const PairList<Real> &list) {
-  if constexpr (Law::history == 0) {
-    if (list.mirror && list.scratch && list.pair_i) return pair_loop_once(law, p, list);
-  }
-  parallel_for(p.team, p.n, [&](long long i) { pair_forces_on(law, p, list, static_cast<std::uint32_t>(i)); });
-}
-
 // The kinematics of particle i against a wall from its dense record (interacting: overlap above the floor).
 template <class Real>
 SM_HD ContactState<Real> wall_contact_state(const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t i) {
@@ -186,8 +184,8 @@ SM_HD ContactState<Real> wall_contact_state(const Particles<Real> &p, const Wall
   return c;
 }
 
-// The force of one wall on particle i from its dense record (nothing when not touching). The body of
-// both backends' wall loops.
+// The force of one wall on particle i from its dense record (nothing when not touching): one GPU
+// thread per particle under CUDA, and the whole-wall loop of hosts before ABI 10.3.
 template <class Law, class Real>
 SM_HD void wall_force_on(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t i) {
   Real *h = Law::history ? w.hist + std::size_t(i) * Law::history : nullptr;
@@ -207,74 +205,86 @@ SM_HD void wall_force_on(const Law &law, const Particles<Real> &p, const WallCon
 }
 
 namespace detail {
-// The touching particles of a wall, queued and evaluated in one loop that the compiler vectorises
-// (as the pair loop's queue): the scan that finds them has no branch to mispredict, and a law
-// written with selects runs on SIMD lanes. Each particle gets one contribution: the same bits as
-// wall_force_on.
-template <class Law, class Real> struct WallBatch {
-  static constexpr int capacity = 64;
-  static constexpr int chunk = 16;  // records scanned between checks of the room left
-  std::uint32_t i[capacity + chunk];
-  Real f[6][capacity];  // force, then torque
-
-  void flush(int size, const Law &shared_law, const Particles<Real> &p, const WallContacts<Real> &w) {
-    const Law law = shared_law;  // a copy the loop's stores cannot alias
-#pragma GCC ivdep
-    for (int q = 0; q < size; ++q) {
-      const ContactState<Real> c = wall_contact_state(p, w, i[q]);
-      Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
-      accumulate(law(c, static_cast<Real *>(nullptr)), c.normal, p.r[i[q]], force, torque);
-      f[0][q] = force.x;
-      f[1][q] = force.y;
-      f[2][q] = force.z;
-      f[3][q] = torque.x;
-      f[4][q] = torque.y;
-      f[5][q] = torque.z;
-    }
-    for (int q = 0; q < size; ++q) {
-      const std::uint32_t k = i[q];
-      p.fx[k] += f[0][q];
-      p.fy[k] += f[1][q];
-      p.fz[k] += f[2][q];
-      p.tx[k] += f[3][q];
-      p.ty[k] += f[4][q];
-      p.tz[k] += f[5][q];
-    }
+// The six rows of a queue's output (force x, y, z, torque x, y, z, `stride` apart), as pointers taken once:
+// stores through them are contiguous in the queue's index, which the vectoriser sees (an index computed
+// as row * stride + q in 32 bits might wrap, and would be stored with scatters).
+template <class Real> struct QueueRows {
+  Real *row[6];
+  QueueRows(Real *out, std::uint32_t stride) {
+    for (int c = 0; c < 6; ++c) row[c] = out ? out + std::size_t(c) * stride : nullptr;
+  }
+  SM_HD void put(std::uint32_t q, const Vec3<Real> &f, const Vec3<Real> &t) const {
+    row[0][q] = f.x;
+    row[1][q] = f.y;
+    row[2][q] = f.z;
+    row[3][q] = t.x;
+    row[4][q] = t.y;
+    row[5][q] = t.z;
   }
 };
-
-template <class Law, class Real>
-void wall_range(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t lo,
-                std::uint32_t hi) {
-  using Batch = WallBatch<Law, Real>;
-  Batch batch;
-  int queued = 0;
-  const Real floor = interaction_floor(law, w);
-  for (std::uint32_t k = lo; k < hi;) {
-    const std::uint32_t stop = min(hi, k + std::uint32_t(Batch::chunk));
-    for (; k < stop; ++k) {
-      batch.i[queued] = k;
-      queued += w.overlap[k] > floor ? 1 : 0;  // kept only when interacting, without a branch
-    }
-    if (queued > Batch::capacity - Batch::chunk) {
-      batch.flush(queued, law, p, w);
-      queued = 0;
-    }
-  }
-  batch.flush(queued, law, p, w);
-}
 }  // namespace detail
 
-// Particle-wall loop over the dense per-particle records of one wall.
-template <class Law, class Real> void wall_loop(const Law &law, const Particles<Real> &p, const WallContacts<Real> &w) {
+// The forces of a queue of pairs (PairQueue), in one loop the compiler vectorises: a law written with
+// selects runs on SIMD lanes with the same bits, as lanes do the same IEEE operations in the same
+// order. With on_j, j's contribution is formed from the same evaluation: seen from j, the contact's
+// kinematics are the exact negation of those seen from i (IEEE subtraction, products and the
+// minimum-image wrap are antisymmetric), so a law written with vector operations returns the same F_n
+// and the negated tangential force and torque there.
+template <class Law, class Real>
+void evaluate_pairs(const Law &shared_law, const Particles<Real> &shared_p, const PairQueue<Real> &q) {
+  const Law law = shared_law;           // copies the loop's stores cannot alias: their
+  const Particles<Real> p = shared_p;   // constants and pointers stay in registers
+  const std::uint32_t n = q.n;
+  const std::uint32_t *qi = q.i, *qj = q.j;
+  const Real *dx = q.dx, *dy = q.dy, *dz = q.dz;
+  const detail::QueueRows<Real> on_i(q.on_i, q.stride), on_j(q.on_j, q.stride);
   if constexpr (Law::history == 0) {
-    run_team(p.team, [&](TeamSlot team) {
-      const TeamRange r = team_share(w.n, team);
-      with_simd(
-          [&] { detail::wall_range(law, p, w, static_cast<std::uint32_t>(r.lo), static_cast<std::uint32_t>(r.hi)); });
-    });
-  } else {
-    parallel_for(p.team, w.n, [&](long long i) { wall_force_on(law, p, w, static_cast<std::uint32_t>(i)); });
+    if (q.on_j) {
+      // ivdep, not omp simd: GCC 12 does not vectorise this loop with the lanes' private copies omp simd makes
+#pragma GCC ivdep
+      for (std::uint32_t k = 0; k < n; ++k) {
+        const Vec3<Real> d{dx[k], dy[k], dz[k]};
+        const ContactState<Real> c = pair_contact_state(p, qi[k], qj[k], d, dot(d, d));
+        const ContactForce<Real> f = law(c, static_cast<Real *>(nullptr));
+        const ContactForce<Real> mirrored{f.normal, -f.tangent, -f.torque};  // the law's answer seen from j
+        Vec3<Real> a{0, 0, 0}, ta{0, 0, 0}, b{0, 0, 0}, tb{0, 0, 0};
+        accumulate(f, c.normal, p.r[qi[k]], a, ta);
+        accumulate(mirrored, -c.normal, p.r[qj[k]], b, tb);
+        on_i.put(k, a, ta);
+        on_j.put(k, b, tb);
+      }
+      return;
+    }
+  }
+#pragma GCC ivdep
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const Vec3<Real> d{dx[k], dy[k], dz[k]};
+    const ContactState<Real> c = pair_contact_state(p, qi[k], qj[k], d, dot(d, d));
+    Real *h = Law::history ? q.hist + std::size_t(q.entry[k]) * Law::history : nullptr;
+    Vec3<Real> a{0, 0, 0}, ta{0, 0, 0};
+    accumulate(law(c, h), c.normal, p.r[qi[k]], a, ta);
+    on_i.put(k, a, ta);
+  }
+}
+
+// The forces of a queue of particles on one wall (WallQueue): the same bits as wall_force_on.
+template <class Law, class Real>
+void evaluate_walls(const Law &shared_law, const Particles<Real> &shared_p, const WallContacts<Real> &shared_w,
+                    const WallQueue<Real> &q) {
+  const Law law = shared_law;
+  const Particles<Real> p = shared_p;
+  const WallContacts<Real> w = shared_w;
+  const std::uint32_t n = q.n;
+  const std::uint32_t *qi = q.i;
+  const detail::QueueRows<Real> out(q.out, q.stride);
+#pragma GCC ivdep
+  for (std::uint32_t k = 0; k < n; ++k) {
+    const std::uint32_t i = qi[k];
+    const ContactState<Real> c = wall_contact_state(p, w, i);
+    Real *h = Law::history ? w.hist + std::size_t(i) * Law::history : nullptr;
+    Vec3<Real> force{0, 0, 0}, torque{0, 0, 0};
+    accumulate(law(c, h), c.normal, p.r[i], force, torque);
+    out.put(k, force, torque);
   }
 }
 
@@ -346,15 +356,32 @@ template <class Law> struct ContactOps {
     if constexpr (HasCohesion<Law>) return law(s).cohesion.range;
     else return 0;
   }
+  // The whole-list loops of hosts before ABI 10.3 (on the caller's thread; they share no work).
   template <class Real> static void pairs(const void *s, const Particles<Real> *p, const PairList<Real> *l) {
-    in_loop_form(law(s), [&](const auto &form) { pair_loop(form, *p, *l); });
+    in_loop_form(law(s), [&](const auto &form) {
+      for (std::uint32_t i = 0; i < p->n; ++i) pair_forces_on(form, *p, *l, i);
+    });
   }
   template <class Real> static void walls(const void *s, const Particles<Real> *p, const WallContacts<Real> *w) {
-    in_loop_form(law(s), [&](const auto &form) { wall_loop(form, *p, *w); });
+    in_loop_form(law(s), [&](const auto &form) {
+      for (std::uint32_t i = 0; i < w->n; ++i) wall_force_on(form, *p, *w, i);
+    });
   }
-#if SPREADMAP_TARGET_ABI_MINOR >= 1
+  template <class Real> static void pair_queue(const void *s, const Particles<Real> *p, const PairQueue<Real> *q) {
+    in_loop_form(law(s), [&](const auto &form) { with_simd([&] { evaluate_pairs(form, *p, *q); }); });
+  }
+  template <class Real>
+  static void wall_queue(const void *s, const Particles<Real> *p, const WallContacts<Real> *w, const WallQueue<Real> *q) {
+    in_loop_form(law(s), [&](const auto &form) { with_simd([&] { evaluate_walls(form, *p, *w, *q); }); });
+  }
   static std::uint32_t history(const void *s) { return static_cast<std::uint32_t>(history_of(law(s))); }
   static constexpr std::uint32_t most_history = Law::history + (HasRolling<Law> ? rolling_spring_history : 0);
+#if SPREADMAP_TARGET_ABI_MINOR >= 3
+  static constexpr sm_contact_ops_v1 table = {
+      most_history,  &frequency, &zeta,   &torque,            &pairs<double>,     &pairs<float>,
+      &walls<double>, &walls<float>, &range, &history, &pair_queue<double>, &pair_queue<float>,
+      &wall_queue<double>, &wall_queue<float>};
+#elif SPREADMAP_TARGET_ABI_MINOR >= 1
   static constexpr sm_contact_ops_v1 table = {most_history,  &frequency,     &zeta,         &torque, &pairs<double>,
                                               &pairs<float>, &walls<double>, &walls<float>, &range,  &history};
 #else
@@ -365,8 +392,6 @@ template <class Law> struct ContactOps {
 }  // namespace detail
 
 }  // namespace spreadmap
-
-#include <spreadmap/pair_once.hpp>  // pair_loop_once, the CPU loop for laws without history
 
 // Registers a contact law. The static_asserts read as sentences when a law breaks the rules.
 #define SPREADMAP_CONTACT_PLUGIN(LAW, NAME, VERSION, SUMMARY)                                    \

@@ -19,7 +19,6 @@
 #include <spreadmap/batch.hpp>
 #include <spreadmap/hd.hpp>
 #include <spreadmap/plugin.hpp>
-#include <spreadmap/team.hpp>
 
 #include <type_traits>
 
@@ -67,6 +66,13 @@ typedef struct sm_spreader_ops_v2 {
   void (*pose)(const void *self, double t, sm_spreader_pose_v2 *out);
   // 1 when a sphere (centre, radius) at time t overlaps the body.
   int (*touches)(const void *self, double t, const double centre[3], double radius);
+#if SPREADMAP_TARGET_ABI_MINOR >= 3
+  // ABI 10.3: the records of particles [lo, hi) only; the host shares the particles between its threads.
+  void (*contacts_range_f64)(const void *self, const Particles<double> *p, WallContacts<double> *out, uint32_t lo,
+                             uint32_t hi);
+  void (*contacts_range_f32)(const void *self, const Particles<float> *p, WallContacts<float> *out, uint32_t lo,
+                             uint32_t hi);
+#endif
 } sm_spreader_ops_v2;
 }
 
@@ -89,16 +95,24 @@ SM_HD void geometry_contact_of(const Geometry &g, const Particles<Real> &p, cons
   }
 }
 
+// The records of particles [lo, hi).
 template <class Geometry, class Real>
-void geometry_loop(const Geometry &g, const Particles<Real> &p, WallContacts<Real> &w) {
-  parallel_for(p.team, p.n, [&](long long i) { geometry_contact_of(g, p, w, static_cast<std::uint32_t>(i)); });
+void geometry_loop(const Geometry &g, const Particles<Real> &p, WallContacts<Real> &w, std::uint32_t lo,
+                   std::uint32_t hi) {
+  for (std::uint32_t i = lo; i < hi; ++i) geometry_contact_of(g, p, w, i);
 }
 
 namespace detail {
 template <class G> struct GeometryOps {
   static const G &geo(const void *s) { return *static_cast<const G *>(s); }
-  static void c64(const void *s, const Particles<double> *p, WallContacts<double> *w) { geometry_loop(geo(s), *p, *w); }
-  static void c32(const void *s, const Particles<float> *p, WallContacts<float> *w) { geometry_loop(geo(s), *p, *w); }
+  // every particle (hosts before ABI 10.3), or a range
+  template <class Real> static void all(const void *s, const Particles<Real> *p, WallContacts<Real> *w) {
+    geometry_loop(geo(s), *p, *w, 0, p->n);
+  }
+  template <class Real>
+  static void range(const void *s, const Particles<Real> *p, WallContacts<Real> *w, uint32_t lo, uint32_t hi) {
+    geometry_loop(geo(s), *p, *w, lo, hi);
+  }
   static double speed(const void *s) { return geo(s).max_surface_speed(); }
   static void describe(const void *s, sm_spreader_description_v2 *out) {
     *out = sm_spreader_description_v2{};
@@ -112,7 +126,12 @@ template <class G> struct GeometryOps {
     WallHit<double> hit{0, {0, 0, 1}, {0, 0, 0}};
     return geo(s)(Vec3<double>{c[0], c[1], c[2]}, radius, t, hit) && hit.overlap > 0 ? 1 : 0;
   }
-  static constexpr sm_spreader_ops_v2 table = {&c64, &c32, &speed, &describe, &pose, &touches};
+#if SPREADMAP_TARGET_ABI_MINOR >= 3
+  static constexpr sm_spreader_ops_v2 table = {&all<double>, &all<float>, &speed,         &describe,
+                                               &pose,        &touches,    &range<double>, &range<float>};
+#else
+  static constexpr sm_spreader_ops_v2 table = {&all<double>, &all<float>, &speed, &describe, &pose, &touches};
+#endif
 };
 }  // namespace detail
 }  // namespace spreadmap

@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "core/error.hpp"
+#include "core/plugin_abi.hpp"
 #include "engine/plugin_law.hpp"
 #include "workflow/scene/scene_parse.hpp"
 #include "workflow/scene/scene_walls.hpp"
@@ -148,7 +149,8 @@ template <class Real> std::unique_ptr<SceneRun<Real>> build_scene(const LoadedSc
       if (const auto shortfall = spreader_span_shortfall(spreader.description(), s.domain);
           shortfall && shortfall->periodic)
         throw InputError(fmt::format("{}{}: {}\n  {}", at, w.key_path, shortfall->what, shortfall->fix));
-      sim.add_geometry({&spreader.ops(), plugin.get(), engine::bound_law(wall_law), w.name, w.spreader.time_offset});
+      sim.add_geometry({&spreader.ops(), plugin.get(), engine::bound_law(wall_law), w.name, w.spreader.time_offset,
+                        abi_minor(*plugin.plugin()->descriptor)});
       run->spreaders.push_back(spreader);
       spreader_laws.push_back(&wall_law);
       continue;

@@ -1,8 +1,9 @@
-// Teams of threads for the loops of a step. Loops split work into fixed contiguous ranges, one per
+// Teams of threads for the engine's loops. Loops split work into fixed contiguous ranges, one per
 // thread, which keeps results independent of scheduling. A loop runs on the team it is given: the
-// host lends plugins its own (Particles::team), whose threads wait for work and for each other by
-// spinning in user space; with no team (null) it runs in an OpenMP parallel region. One thread of one
-// when built without OpenMP.
+// engine's own (engine/thread_team.hpp), whose threads wait for work and for each other by spinning in
+// user space; with no team (null) it runs in an OpenMP parallel region. One thread of one when built
+// without OpenMP. Internal to the engine: plugins are handed ranges and queues, never threads
+// (spreadmap/batch.hpp).
 #pragma once
 #include <cstddef>
 #include <type_traits>
@@ -22,8 +23,7 @@ struct TeamSlot {
   std::size_t cuts_for = 0;
 };
 
-// A team of threads that runs a body once on each of its threads. Plain function pointers: it crosses
-// the plugin boundary. The host's is engine/thread_team.hpp.
+// A team of threads that runs a body once on each of its threads (engine/thread_team.hpp).
 struct Team {
   void *self;
   int (*size)(void *self);                                                // threads a run would get now
