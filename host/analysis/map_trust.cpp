@@ -1,8 +1,10 @@
 #include "map_trust.hpp"
+#include "analysis/known_columns.hpp"
 
 #include <fmt/format.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 namespace spreadmap::analysis {
 
@@ -49,9 +51,9 @@ std::vector<MapTrust> judge_map_trust(const ModelFile &model) {
 std::vector<std::string> trust_notes(const std::vector<MapTrust> &trust) {
   std::vector<std::string> notes;
   for (const auto &t : trust)
-    if (t.untrusted() && (t.output == "vs" || t.output == "rq"))
-      notes.push_back(fmt::format("{} map NOT TRUSTED: cross-validated Q^2 = {:.2f} < {:.2f}",
-                                  t.output == "rq" ? "R_q" : "V_s", t.q2_cv, min_trusted_q2_cv));
+    if (t.untrusted() && is_contract_metric(t.output))
+      notes.push_back(fmt::format("{} map NOT TRUSTED: cross-validated Q^2 = {:.2f} < {:.2f}", known_symbol(t.output),
+                                  t.q2_cv, min_trusted_q2_cv));
   return notes;
 }
 

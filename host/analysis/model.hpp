@@ -2,7 +2,7 @@
 // PluginModel adapts a loaded surrogate plugin (sm_plugin_v1 + instance); tests may wrap anything.
 #pragma once
 #include <Eigen/Dense>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 namespace spreadmap::analysis {
 

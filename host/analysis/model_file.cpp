@@ -1,6 +1,7 @@
 #include "model_file.hpp"
 
 #include <stdexcept>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "read_file.hpp"

@@ -4,6 +4,7 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <cmath>
 #include <stdexcept>
+#include <nlohmann/json.hpp>
 
 namespace sm = spreadmap;
 

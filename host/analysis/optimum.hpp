@@ -6,7 +6,7 @@
 // (z = 0) is the mean rule: predicted R_q at most the target.
 #pragma once
 #include <Eigen/Dense>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <cstddef>
 #include <string>

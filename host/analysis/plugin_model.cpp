@@ -5,6 +5,7 @@
 
 #include "core/plugin_abi.hpp"
 #include <stdexcept>
+#include <nlohmann/json.hpp>
 
 namespace sm = spreadmap;
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "scores.hpp"

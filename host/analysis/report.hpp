@@ -3,7 +3,7 @@
 // where it reports them, and parity rows (true vs predicted).
 #pragma once
 #include <Eigen/Dense>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <limits>
 #include <string>

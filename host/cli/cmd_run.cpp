@@ -1,6 +1,7 @@
 // `spreadmap run WORKFLOW`: the whole workflow here, or its cases spread over MPI ranks or Slurm tasks.
 #include <boost/program_options.hpp>
 #include <cstdlib>
+#include <nlohmann/json.hpp>
 
 #include "workflow/runner.hpp"
 #include "cli/program_commands.hpp"

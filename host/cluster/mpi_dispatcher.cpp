@@ -5,6 +5,7 @@
 #include <chrono>
 #include <map>
 #include <thread>
+#include <nlohmann/json.hpp>
 
 #include "cluster/cpu_share.hpp"
 #include "cluster/heap_order.hpp"

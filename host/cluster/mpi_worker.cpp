@@ -1,6 +1,7 @@
 #include "cluster/mpi_worker.hpp"
 
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "cluster/cpu_share.hpp"
 #include "workflow/executors/executor_hook.hpp"

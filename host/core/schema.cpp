@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <stdexcept>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "core/suggest.hpp"

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <spreadmap/contact.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/diagnostics.hpp"
 #include "core/schema.hpp"

@@ -1,5 +1,6 @@
 // spreadmap render STATE --out FILE.png [--scene scene.json] [--title TEXT] [--width PIXELS] [--vector pdf|svg|eps]
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/files.hpp"

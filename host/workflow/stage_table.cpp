@@ -3,6 +3,7 @@
 #include "core/diagnostics.hpp"
 #include "workflow/stage/commands.hpp"
 #include "workflow/stage/stage.hpp"
+#include <nlohmann/json.hpp>
 
 namespace spreadmap {
 

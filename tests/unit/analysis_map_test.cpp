@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "host/analysis/cross_validation.hpp"
 #include "host/analysis/grid.hpp"

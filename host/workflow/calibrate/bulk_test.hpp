@@ -4,7 +4,6 @@
 // so that a calibration stopped and run again never recomputes a finished run.
 #pragma once
 #include <filesystem>
-#include <nlohmann/json.hpp>
 #include <vector>
 
 #include "core/registry.hpp"

@@ -21,6 +21,7 @@
 #include "workflow/stage/stage_settings.hpp"
 
 #include <spreadmap/params.hpp>
+#include <nlohmann/json.hpp>
 
 namespace spreadmap {
 namespace {

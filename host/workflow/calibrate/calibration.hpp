@@ -4,7 +4,7 @@
 // identified from the measured angles (identify.hpp). Writes <out>/calibration.json.
 #pragma once
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "core/registry.hpp"
 #include "workflow/calibrate/calibration_file.hpp"

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 #include <spreadmap/params.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/schema.hpp"

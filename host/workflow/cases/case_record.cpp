@@ -1,6 +1,7 @@
 #include "workflow/cases/case_record.hpp"
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "workflow/cases/case_runner.hpp"

@@ -2,7 +2,7 @@
 // fingerprint of its state.vtp, and the check a re-run makes of it.
 #pragma once
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "engine/particle_set.hpp"

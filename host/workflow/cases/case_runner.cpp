@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <optional>
+#include <nlohmann/json.hpp>
 
 #include "workflow/cases/case_record.hpp"
 #include "workflow/spreading/coarse_grain.hpp"

@@ -1,6 +1,7 @@
 #include "workflow/cases/layered_case.hpp"
 
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "engine/vtp_io.hpp"

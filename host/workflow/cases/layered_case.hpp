@@ -2,7 +2,7 @@
 // shares: a finished layer read back, and case.json assembled from its layers' records.
 #pragma once
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 

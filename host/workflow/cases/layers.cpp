@@ -1,6 +1,7 @@
 #include "workflow/cases/layers.hpp"
 
 #include <optional>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "workflow/cases/case_record.hpp"

@@ -3,6 +3,7 @@
 #include <spreadmap/sphere.hpp>
 
 #include <optional>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "workflow/cases/case_record.hpp"

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <spreadmap/params.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "core/heightmap_vti.hpp"

@@ -4,7 +4,7 @@
 // (+ heightmap.vti, heightmap.png), or its metrics.json reused while its key is unchanged.
 #pragma once
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "core/diagnostics.hpp"

@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "analysis/replicate_summary.hpp"
 #include "analysis/table.hpp"

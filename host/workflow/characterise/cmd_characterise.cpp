@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/heightmap_vti.hpp"

@@ -1,6 +1,7 @@
 #include "workflow/characterise/layer_eval.hpp"
 
 #include <spreadmap/metric.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/units.hpp"

@@ -4,6 +4,7 @@
 
 #include <chrono>
 #include <mutex>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "cuda/backend.hpp"

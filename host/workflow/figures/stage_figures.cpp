@@ -14,8 +14,10 @@
 #endif
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "workflow/figures/figure_style.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap::figures {
 
@@ -133,10 +135,10 @@ PlaneGrid plane(const analysis::GridMap &g) {
   return p;
 }
 
+// A column's symbol and unit as a figure prints them: the file's unit, else spreadmap's own.
 render::PlottedQuantity quantity(const std::string &name, const std::string &unit) {
-  if (name == "vs") return {"V_s", unit.empty() ? "m^2/s" : unit};
-  if (name == "rq") return {"R_q", unit.empty() ? "m" : unit};
-  return {name, unit};
+  if (!is_contract_metric(name)) return {name, unit};
+  return {known_symbol(name), unit.empty() ? known_unit(name) : unit};
 }
 
 }  // namespace
@@ -215,7 +217,7 @@ void parity(const analysis::Report &report, const analysis::Table &cv, const std
     render::ParityInput in;
     for (const auto &name : outputs) {
       render::ParityPanel panel;
-      panel.quantity = quantity(name, name == "vs" ? "m^2/s" : name == "rq" ? "m" : "");
+      panel.quantity = quantity(name, "");
       const auto truth = t.numbers(name + "_true"), pred = t.numbers(name + "_predicted");
       for (std::size_t i = 0; i < truth.size(); ++i) {
         auto &sim = split[i] == "test" ? panel.test_simulated : panel.train_simulated;
@@ -285,8 +287,8 @@ void process_map(const analysis::GridMap &grid, std::size_t vs, std::size_t rq, 
     }
     in.notes = analysis::trust_notes(trust);
     for (const auto &t : trust) {
-      in.rq_greyed |= t.untrusted() && t.output == "rq";
-      in.vs_greyed |= t.untrusted() && t.output == "vs";
+      in.rq_greyed |= t.untrusted() && t.output == roughness_column;
+      in.vs_greyed |= t.untrusted() && t.output == spread_rate_column;
     }
     render::process_map(in, png, sized(1600, 1100, "Process map: R_q (filled) and V_s (lines)"));
   });

@@ -4,12 +4,14 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/files.hpp"
 #include "analysis/multifidelity.hpp"
 #include "core/suggest.hpp"
 #include "workflow/figures/stage_figures.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap {
 
@@ -66,7 +68,7 @@ std::optional<std::size_t> output_index(const analysis::ModelFile &file, const s
 std::vector<std::string> MapResult::untrusted_basis() const {
   std::vector<std::string> out;
   for (const auto &t : trust)
-    if (t.untrusted() && (t.output == "vs" || t.output == "rq")) out.push_back(t.output);
+    if (t.untrusted() && is_contract_metric(t.output)) out.push_back(t.output);
   return out;
 }
 
@@ -109,8 +111,8 @@ MapResult make_process_map(PluginRegistry &registry, const analysis::ModelFile &
   std::vector<std::string> outputs;
   for (const auto &o : file.outputs) outputs.push_back(o.name);
   MapResult m{analysis::evaluate_grid(*model, axes, outputs),
-              output_index(file, "vs"),
-              output_index(file, "rq"),
+              output_index(file, spread_rate_column),
+              output_index(file, roughness_column),
               {},
               {},
               analysis::judge_map_trust(file),

@@ -2,6 +2,7 @@
 // target, and whether the maps it rests on can be trusted.
 #include "workflow/report/html.hpp"
 #include "workflow/report/report_sections.hpp"
+#include <nlohmann/json.hpp>
 
 namespace spreadmap::report {
 

@@ -1,10 +1,12 @@
 // The report's sections about what was learnt from the cases: each surrogate's accuracy (the study's
 // Table 4 form with cross-validation) and parity plots, the response surfaces, the verification.
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "analysis/map_trust.hpp"
 #include "workflow/report/html.hpp"
 #include "workflow/report/report_sections.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap::report {
 
@@ -60,7 +62,7 @@ PageSection surrogates_section(const fs::path &run) {
 
 PageSection map_section(const fs::path &run) {
   std::string body;
-  for (const char *m : {"vs", "rq"})
+  for (const char *m : {spread_rate_column, roughness_column})
     body += figure(run / "map" / (std::string("surface_") + m + ".png"),
                    "The surrogate's " + metric_label(m) + " over (U, omega), with the simulated cases.", "half");
   if (body.empty()) return {"map", "Response surfaces", ""};

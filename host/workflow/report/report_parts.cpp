@@ -7,10 +7,12 @@
 
 #include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "core/files.hpp"
 #include "workflow/map/mapping.hpp"
 #include "workflow/report/html.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap::report {
 
@@ -52,12 +54,7 @@ std::string shown(const json &v, const std::string &unit) {
 
 std::string unit_of(const std::string &name, const json &units) {
   if (units.is_object() && units.contains(name) && units[name].is_string()) return units[name].get<std::string>();
-  static const std::map<std::string, std::string> own = {
-      {"U", "m/s"},        {"omega", "rad/s"},         {"vs", "m^2/s"},
-      {"rq", "m"},         {"mean_height", "m"},       {"solid_thickness", "m"},
-      {"largest_bare_patch", "m"}};
-  const auto it = own.find(name);
-  return it == own.end() ? "" : it->second;
+  return known_unit(name);
 }
 
 std::string number(double v, const char *format) { return std::isfinite(v) ? fmt::format(fmt::runtime(format), v) : "–"; }
@@ -76,11 +73,6 @@ std::string figure(const fs::path &png, const std::string &caption, const std::s
   return "<figure>" + img + "<figcaption>" + html::escape(caption) + "</figcaption></figure>\n";
 }
 
-std::string metric_label(const std::string &name) {
-  static const std::map<std::string, std::string> labels = {
-      {"rq", "R_q"}, {"vs", "V_s"}, {"packing_fraction", "packing"}, {"largest_bare_patch", "largest bare patch"}};
-  const auto it = labels.find(name);
-  return it == labels.end() ? name : it->second;
-}
+std::string metric_label(const std::string &name) { return known_symbol(name); }
 
 }  // namespace spreadmap::report

@@ -1,7 +1,7 @@
 // The run report's sections, each from the run directory's files alone; a section whose files are not
 // there yet comes back with an empty body.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "workflow/report/report_parts.hpp"
 

@@ -1,6 +1,7 @@
 #include "workflow/report/run_report.hpp"
 
 #include <algorithm>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/files.hpp"

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include <spreadmap/abi.h>
+#include <nlohmann/json.hpp>
 
 #include "core/plugin_abi.hpp"
 #include "core/units.hpp"
@@ -15,6 +16,7 @@
 #include "workflow/map/mapping.hpp"
 #include "workflow/report/html.hpp"
 #include "workflow/report/report_sections.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap::report {
 
@@ -64,7 +66,7 @@ PageSection cases_section(const fs::path &run, const json &manifest) {
   const auto metrics = read_table(run / "metrics.csv");
   std::vector<std::string> inputs, shown_metrics;
   for (const auto &[k, v] : member(cases.front(), "inputs").items()) inputs.push_back(k);
-  for (const char *m : {"vs", "rq", "packing_fraction", "coverage"})
+  for (const char *m : {spread_rate_column, roughness_column, "packing_fraction", "coverage"})
     if (metrics && metrics->has_column(m)) shown_metrics.push_back(m);
   std::vector<std::string> header = {"case"};
   for (const auto &k : inputs) header.push_back(k);

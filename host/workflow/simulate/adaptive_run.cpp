@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include <functional>
+#include <nlohmann/json.hpp>
 
 #include "analysis/adaptive.hpp"
 #include "analysis/multifidelity.hpp"

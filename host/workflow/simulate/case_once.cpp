@@ -11,6 +11,7 @@
 #include "workflow/spreading/case_setup.hpp"
 #include "workflow/spreading/coarse_grain.hpp"
 #include "workflow/executors/local_executor.hpp"
+#include <nlohmann/json.hpp>
 
 namespace spreadmap {
 

@@ -1,7 +1,7 @@
 // One case run to completion before the caller goes on, and its layer measured: the building blocks of
 // the stages that decide their next case from the last result (adaptive design, trade study).
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "workflow/cases/case_runner.hpp"

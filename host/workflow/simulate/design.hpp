@@ -8,13 +8,14 @@
 #pragma once
 #include <yaml-cpp/yaml.h>
 
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
 #include "core/diagnostics.hpp"
 #include "core/registry.hpp"
 #include "workflow/spreading/scene_section.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap {
 
@@ -30,7 +31,7 @@ struct Design {
   // adaptive
   std::size_t initial = 9, budget = 0;
   double target_nrmse = 0;  // percent
-  std::vector<std::string> outputs = {"vs", "rq"};
+  std::vector<std::string> outputs = {spread_rate_column, roughness_column};
   // adaptive with two fidelities (`fidelity: {cheap: {KEY: VALUE, ...}, expensive_budget: N}`): the
   // scene keys set on the cheap cases (one value each) and the most expensive cases; `budget` then
   // caps the cheap ones. Empty: one fidelity.

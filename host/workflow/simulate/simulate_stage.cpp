@@ -3,6 +3,7 @@
 // never recomputed. With `replicates: N` each design point runs N times with independent heaps
 // (simulate/replicates.hpp): the runs are numbered point by point (point i, replicate r: i * N + r).
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/files.hpp"

@@ -5,6 +5,7 @@
 #include <spreadmap/geometry.hpp>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/stop.hpp"

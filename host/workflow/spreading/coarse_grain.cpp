@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <string>
+#include <nlohmann/json.hpp>
 
 #include "core/schema.hpp"
 

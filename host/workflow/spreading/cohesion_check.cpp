@@ -4,6 +4,7 @@
 
 #include <exception>
 #include <numbers>
+#include <nlohmann/json.hpp>
 
 #include "engine/plugin_law.hpp"
 #include "engine/stability.hpp"

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <string>
+#include <nlohmann/json.hpp>
 
 #include "workflow/spreading/powder_sizes.hpp"
 

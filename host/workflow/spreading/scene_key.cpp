@@ -1,6 +1,7 @@
 #include "workflow/spreading/scene_key.hpp"
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 namespace spreadmap {
 

@@ -3,7 +3,7 @@
 // it on a scene. The simulate stage's design, the adaptive design and the tradeoff stage's
 // fidelities all change their scenes through apply_scene_value.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <spreadmap/abi.h>
 
 #include <string>

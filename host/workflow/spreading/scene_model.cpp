@@ -2,6 +2,7 @@
 
 #include <concepts>
 #include <set>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/files.hpp"

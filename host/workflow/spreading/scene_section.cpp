@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <spreadmap/params.hpp>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/schema.hpp"

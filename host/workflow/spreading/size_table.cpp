@@ -7,6 +7,7 @@
 #include <optional>
 #include <stdexcept>
 #include <vector>
+#include <nlohmann/json.hpp>
 
 #include "analysis/table.hpp"
 #include "core/suggest.hpp"

@@ -13,7 +13,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <filesystem>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "core/diagnostics.hpp"

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <nlohmann/json.hpp>
 
 #include "core/schema.hpp"
 #include "workflow/spreading/layers_check.hpp"

@@ -8,6 +8,7 @@
 #include "core/error.hpp"
 #include "core/plugin_abi.hpp"
 #include "core/suggest.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap {
 namespace {
@@ -49,8 +50,8 @@ std::vector<std::string> contract_names() {
 
 const std::vector<ContractMetric> &metric_contract() {
   static const std::vector<ContractMetric> contract = {
-      {"vs", "m^2/s"},  // V_s, the volume spread rate
-      {"rq", "m"},      // R_q, the roughness of the layer
+      {spread_rate_column, known_column(spread_rate_column)->unit},
+      {roughness_column, known_column(roughness_column)->unit},
   };
   return contract;
 }

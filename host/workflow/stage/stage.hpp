@@ -3,7 +3,6 @@
 // before any stage runs; run() does the work.
 #pragma once
 #include <memory>
-#include <nlohmann/json.hpp>
 #include <optional>
 #include <set>
 #include <string>

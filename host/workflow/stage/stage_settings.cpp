@@ -1,4 +1,5 @@
 #include "workflow/stage/stage_settings.hpp"
+#include <nlohmann/json.hpp>
 
 namespace spreadmap {
 

@@ -7,7 +7,7 @@
 #include <spreadmap/params.hpp>
 
 #include <cstddef>
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 
 #include "core/schema.hpp"

@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 
 #include <cmath>
+#include <nlohmann/json.hpp>
 
 #include "analysis/summary.hpp"
 #include "analysis/table.hpp"

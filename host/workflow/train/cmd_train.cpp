@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "workflow/stage/command_line.hpp"

@@ -12,13 +12,14 @@
 #include "core/schema.hpp"
 #include "workflow/figures/figure_style.hpp"
 #include "workflow/file/workflow.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap {
 
 struct TrainConfig {
   std::vector<std::pair<std::string, nlohmann::json>> models;  // name, validated parameters
   std::vector<std::string> inputs;                             // empty = the design's variables
-  std::vector<std::string> outputs = {"vs", "rq"};
+  std::vector<std::string> outputs = {spread_rate_column, roughness_column};
   analysis::Validation validation;  // split: auto unless given
   std::size_t folds = 0;            // K of a plain `split: kfold` (the schema gives the default)
   std::uint64_t seed = 0;

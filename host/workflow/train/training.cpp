@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <functional>
+#include <nlohmann/json.hpp>
 
 #include "analysis/cross_validation.hpp"
 #include "analysis/plugin_model.hpp"
@@ -17,6 +18,7 @@
 #include "core/suggest.hpp"
 #include "workflow/figures/stage_figures.hpp"
 #include "core/units.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap {
 
@@ -277,12 +279,14 @@ std::map<std::string, std::string> units_beside(const std::filesystem::path &tab
   const auto file = table_csv.parent_path() / (table_csv.stem().string() + ".units.json");
   if (!std::filesystem::exists(file)) {
     // a table from elsewhere: spreadmap's own names are SI by definition (metrics.csv's units)
-    units = {{"U", "m/s"}, {"omega", "rad/s"},   {"vs", "m^2/s"},
-             {"rq", "m"},  {"mean_height", "m"}, {"solid_thickness", "m"}};
-    spdlog::info(
-        "{}: no {} beside it: columns named U, omega, vs, rq, mean_height, solid_thickness are taken as SI "
-        "(m/s, rad/s, m^2/s, m), the others as unitless",
-        table_csv.string(), file.filename().string());
+    std::vector<std::string> named;
+    for (const KnownColumn &c : known_columns())
+      if (*c.unit) {
+        units[c.name] = c.unit;
+        named.push_back(std::string(c.name) + " [" + c.unit + "]");
+      }
+    spdlog::info("{}: no {} beside it: columns named {} are taken as SI, the others as unitless", table_csv.string(),
+                 file.filename().string(), join(named, ", "));
     return units;
   }
   try {

@@ -3,6 +3,7 @@
 #include "workflow/run/run_dir.hpp"
 
 #include <set>
+#include <nlohmann/json.hpp>
 
 #include "analysis/table.hpp"
 #include "workflow/figures/stage_figures.hpp"

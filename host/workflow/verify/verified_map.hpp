@@ -1,7 +1,7 @@
 // map.png again once the optimum is checked: the same map as the map stage drew (its grid read back
 // from map.csv, its targets from optimum.json), the optimum marked verified or not verified.
 #pragma once
-#include <nlohmann/json.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include "analysis/model_file.hpp"
 #include "workflow/stage/stage.hpp"

@@ -3,6 +3,7 @@
 #include "workflow/run/run_dir.hpp"
 
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include "core/error.hpp"
 #include "core/files.hpp"

@@ -11,6 +11,7 @@
 #include <spdlog/spdlog.h>
 
 #include <optional>
+#include <nlohmann/json.hpp>
 
 #include "core/units.hpp"
 #include "analysis/multifidelity.hpp"
@@ -31,6 +32,7 @@
 #include "workflow/verify/verification.hpp"
 #include "workflow/verify/verified_map.hpp"
 #include "workflow/verify/verify_runs.hpp"
+#include "analysis/known_columns.hpp"
 
 namespace spreadmap {
 namespace {
@@ -208,8 +210,10 @@ class VerifyStage : public Stage {
     const std::string plugin = optimum.value("model", "");
     const std::string name = plugin.substr(plugin.find('/') + 1);
     const auto model = analysis::load_model_json((ctx.run.train_dir(name) / "model.json").string());
-    const auto vs = output_index(model, "vs"), rq = output_index(model, "rq");
-    if (!vs || !rq) throw InputError("verify: the model " + plugin + " has no outputs named vs and rq");
+    const auto vs = output_index(model, spread_rate_column), rq = output_index(model, roughness_column);
+    if (!vs || !rq)
+      throw InputError("verify: the model " + plugin + " has no outputs named " + spread_rate_column + " and " +
+                       roughness_column);
 
     const Proposed proposed = proposed_points(ctx, model, optimum, round);
     const std::vector<VerifyPoint> &points = proposed.points;
