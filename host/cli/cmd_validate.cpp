@@ -1,6 +1,7 @@
 // `spreadmap validate FILE...`: a workflow, scene or calibration file checked completely, nothing run.
 #include <boost/program_options.hpp>
 #include <iostream>
+#include <yaml-cpp/yaml.h>
 
 #include "workflow/runner.hpp"
 #include "cli/program_commands.hpp"

@@ -3,6 +3,7 @@
 #include "core/error.hpp"
 
 #include <algorithm>
+#include <yaml-cpp/yaml.h>
 
 namespace spreadmap {
 

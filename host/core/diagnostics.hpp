@@ -2,7 +2,7 @@
 // "error: ", core/error.hpp).
 // Validation collects every problem of a file before stopping, so a user fixes them in one go.
 #pragma once
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 #include <string>
 #include <vector>

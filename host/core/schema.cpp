@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/files.hpp"
 #include "core/suggest.hpp"

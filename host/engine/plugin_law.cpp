@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <spreadmap/contact.hpp>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/diagnostics.hpp"
 #include "core/schema.hpp"

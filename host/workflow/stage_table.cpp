@@ -4,6 +4,7 @@
 #include "workflow/stage/commands.hpp"
 #include "workflow/stage/stage.hpp"
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 namespace spreadmap {
 

@@ -1,6 +1,7 @@
 // Diagnostics: one shape for every user-facing error, "FILE:LINE:COL: key.path: what" with a
 // 1-based line and column (yaml-cpp's marks are 0-based), and an indented hint line.
 #include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
 
 #include "core/diagnostics.hpp"
 #include "core/error.hpp"

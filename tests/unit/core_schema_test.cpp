@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
 #include "core/schema.hpp"

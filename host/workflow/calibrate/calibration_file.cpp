@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <spreadmap/params.hpp>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
 #include "core/schema.hpp"

@@ -1,6 +1,7 @@
 #include "workflow/cases/replicates.hpp"
 
 #include "core/schema.hpp"
+#include <yaml-cpp/yaml.h>
 
 namespace spreadmap {
 

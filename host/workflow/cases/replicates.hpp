@@ -13,7 +13,7 @@
 #include "core/diagnostics.hpp"
 #include "workflow/spreading/scene_model.hpp"
 
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 namespace spreadmap {
 

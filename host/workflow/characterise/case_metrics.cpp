@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <spreadmap/params.hpp>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/files.hpp"
 #include "core/heightmap_vti.hpp"

@@ -1,4 +1,5 @@
 #include "workflow/figures/figure_style.hpp"
+#include <yaml-cpp/yaml.h>
 
 namespace spreadmap::figures {
 

@@ -6,7 +6,7 @@
 // copy beside each PNG (gl2ps; raster parts stay raster); frames (simulate only): numbered PNG frames
 // of each case's snapshot series (time.snapshots > 0), cases/cNNN/frames/frame_0000.png ...
 #pragma once
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 #include <string>
 

@@ -3,6 +3,7 @@
 #include <yaml-cpp/depthguard.h>
 
 #include <algorithm>
+#include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
 #include "core/files.hpp"

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "analysis/table.hpp"
 #include "core/error.hpp"

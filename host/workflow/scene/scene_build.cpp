@@ -10,6 +10,7 @@
 #include <spreadmap/contact.hpp>
 
 #include <cmath>
+#include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
 #include "core/plugin_abi.hpp"

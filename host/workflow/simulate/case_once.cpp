@@ -12,6 +12,7 @@
 #include "workflow/spreading/coarse_grain.hpp"
 #include "workflow/executors/local_executor.hpp"
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 namespace spreadmap {
 

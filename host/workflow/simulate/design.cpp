@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "analysis/adaptive.hpp"
 #include "analysis/multifidelity.hpp"

@@ -6,7 +6,7 @@
 // Values carry units as users write them: `U: [40 mm/s, 70 mm/s, 100 mm/s]` or `U: 40, 70, 100 mm/s`
 // (one unit for the whole list) or a range `U: {from: 40 mm/s, to: 100 mm/s, step: 15 mm/s}`.
 #pragma once
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 #include <nlohmann/json_fwd.hpp>
 #include <string>

@@ -5,6 +5,7 @@
 #include <exception>
 #include <numbers>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "engine/plugin_law.hpp"
 #include "engine/stability.hpp"

@@ -2,7 +2,7 @@
 // backend, sleeping): what the engine would refuse at a case's first step is refused by `validate`,
 // naming the file, the line, the key and the fix (docs/cohesion.md).
 #pragma once
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 #include <string>
 

@@ -1,6 +1,7 @@
 #include "workflow/spreading/layers_check.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
 
 #include "core/schema.hpp"
 #include "workflow/spreading/powder_sizes.hpp"

@@ -1,6 +1,7 @@
 #include "workflow/spreading/machine_check.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
 
 #include "core/schema.hpp"
 #include "core/warn_once.hpp"

@@ -4,7 +4,7 @@
 // above the reservoir to pour it and beyond the lip for the overflow. A dosing factor below 1 is
 // warned (the layer cannot fill); powder keys a machine does not use are warned when written.
 #pragma once
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 #include <string>
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
 #include "core/suggest.hpp"

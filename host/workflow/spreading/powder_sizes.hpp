@@ -8,7 +8,7 @@
 //   basis: number | volume | mass     what d10/d50/d90 and the table's fractions count
 //   d_min, d_max                      truncation of the lognormal and the normal (0 = default)
 #pragma once
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 #include <string>
 #include <vector>

@@ -4,6 +4,7 @@
 #include <spdlog/spdlog.h>
 #include <spreadmap/params.hpp>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/error.hpp"
 #include "core/schema.hpp"

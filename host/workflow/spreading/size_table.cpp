@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "analysis/table.hpp"
 #include "core/suggest.hpp"

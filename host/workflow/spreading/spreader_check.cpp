@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <exception>
+#include <yaml-cpp/yaml.h>
 
 #include "core/warn_once.hpp"
 #include "workflow/spreading/case_setup.hpp"

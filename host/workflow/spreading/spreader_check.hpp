@@ -1,7 +1,7 @@
 // The spreading scene's check that its spreader spans the domain's width (scene/spreader_span.hpp
 // says why a short one fails).
 #pragma once
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 #include <string>
 

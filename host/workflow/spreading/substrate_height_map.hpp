@@ -10,7 +10,7 @@
 // heights are measured from, the first heap fed onto it, the checks) is substrate.roughness's
 // (workflow/spreading/substrate_roughness.hpp).
 #pragma once
-#include <yaml-cpp/yaml.h>
+#include "core/yaml_fwd.hpp"
 
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>

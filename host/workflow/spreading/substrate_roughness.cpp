@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/schema.hpp"
 #include "workflow/spreading/layers_check.hpp"

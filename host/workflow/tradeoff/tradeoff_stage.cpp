@@ -17,6 +17,7 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "analysis/summary.hpp"
 #include "analysis/table.hpp"

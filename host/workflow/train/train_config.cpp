@@ -4,6 +4,7 @@
 #include "core/suggest.hpp"
 #include "workflow/stage/plugin_needs.hpp"
 #include "workflow/stage/stage_settings.hpp"
+#include <yaml-cpp/yaml.h>
 
 namespace spreadmap {
 

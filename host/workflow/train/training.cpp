@@ -6,6 +6,7 @@
 #include <cmath>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "analysis/cross_validation.hpp"
 #include "analysis/plugin_model.hpp"

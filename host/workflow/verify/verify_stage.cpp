@@ -12,6 +12,7 @@
 
 #include <optional>
 #include <nlohmann/json.hpp>
+#include <yaml-cpp/yaml.h>
 
 #include "core/units.hpp"
 #include "analysis/multifidelity.hpp"
