@@ -1,7 +1,8 @@
 // The calibration run: every bulk test simulated over a full-factorial design of the parameter box
 // (bulk_test.hpp, each run cached), one surrogate per test fitted to its angles (the model the file
-// names, by default the gp plugin, with its leave-one-out error in degrees), and the parameters
-// identified from the measured angles (identify.hpp). Writes <out>/calibration.json.
+// names, by default the first that gives a predictive standard deviation, with its leave-one-out error
+// in degrees), and the parameters identified from the measured angles (identify.hpp). Writes
+// <out>/calibration.json.
 #pragma once
 #include <filesystem>
 #include <nlohmann/json_fwd.hpp>
