@@ -3,7 +3,8 @@
 // the plugins' CUDA kernels do each DEM step: the roller's wall-contact records, the roller's wall
 // forces and all pair forces (contact/hooke_slider with the viscous slider, as the peers' scene;
 // history and accumulators stay on the device). Neighbour-list rebuilds and integration are not on
-// the GPU yet and are not counted. The same stage on the CPU (OpenMP, all cores) is timed alongside.
+// the GPU yet and are not counted. The same stage through the engine's CPU loops (all cores) is timed
+// alongside.
 //
 //   bench_gpu [--particles N ...] [--steps S] [--float]      (defaults: 5000 235000, 200 steps, double)
 //
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "core/registry.hpp"
+#include "engine/contact_loops.hpp"
 #include "cuda/backend.hpp"
 #include "cuda/device_state.hpp"
 #include "cuda/forces.hpp"
@@ -106,26 +108,22 @@ template <class Real> void run(std::uint32_t n, int steps) {
   std::printf("  gpu: %d steps in %.4f s: %.3g particle-steps/s (%.1f us per step)\n", steps, gpu_seconds, gpu_rate,
               1e6 * gpu_seconds / steps);
 
-  // CPU: the same three calls through the plugins' CPU tables.
-  const auto *pair_cpu = scene.pair_law.ops<sm::sm_contact_ops_v1>();
-  const auto *wall_cpu = scene.wall_law.ops<sm::sm_contact_ops_v1>();
-  const auto *roller_cpu = scene.roller.ops<sm::sm_spreader_ops_v2>();
+  // CPU: the same three stages through the engine's CPU loops (its thread team, the plugins' queues and
+  // ranges); the packing's list has no mirrors, so every entry is evaluated, as on the GPU.
+  const sm::engine::ContactLaw pair_law{scene.pair_law.ops<sm::sm_contact_ops_v1>(), scene.pair_law.get()};
+  const sm::engine::ContactLaw wall_law{scene.wall_law.ops<sm::sm_contact_ops_v1>(), scene.wall_law.get()};
+  const sm::engine::GeometryWall roller{scene.roller.ops<sm::sm_spreader_ops_v2>(), scene.roller.get(), wall_law};
   const int cpu_steps = std::max(3, int(std::min<double>(steps, 2e7 / n)));
   auto p = k.particles();
-  auto l = k.pairs();
+  const auto l = k.pairs();
+  const sm::engine::ListView<Real> list{l.start, l.nbr, l.hist};
   auto w = records.view();
   const auto c0 = Clock::now();
   for (int s = 0; s < cpu_steps; ++s) {
     p.t = Real(1e-3 + s * spec.dt);
-    if constexpr (sizeof(Real) == 8) {
-      roller_cpu->contacts_f64(scene.roller.get(), &p, &w);
-      wall_cpu->walls_f64(scene.wall_law.get(), &p, &w);
-      pair_cpu->pairs_f64(scene.pair_law.get(), &p, &l);
-    } else {
-      roller_cpu->contacts_f32(scene.roller.get(), &p, &w);
-      wall_cpu->walls_f32(scene.wall_law.get(), &p, &w);
-      pair_cpu->pairs_f32(scene.pair_law.get(), &p, &l);
-    }
+    sm::engine::geometry_contacts(roller, p, w);
+    sm::engine::wall_forces(wall_law, p, w);
+    sm::engine::pair_forces(pair_law, p, list);
   }
   const double cpu_seconds = std::chrono::duration<double>(Clock::now() - c0).count();
   const double cpu_rate = double(n) * cpu_steps / cpu_seconds;
