@@ -7,7 +7,7 @@ namespace spreadmap {
 const std::vector<KnownColumn> &known_columns() {
   static const std::vector<KnownColumn> columns = {
       {"U", "m/s", "U"},                                      // the spreader's traverse speed
-      {"omega", "rad/s", "omega"},                            // the roller's rotation
+      {"omega", "rad/s", "omega"},                            // the spreader's rotation rate
       {spread_rate_column, "m^2/s", "V_s"},                   // volume spread rate
       {roughness_column, "m", "R_q"},                         // roughness of the layer's surface
       {"mean_height", "m", "mean height"},                    // of the layer's surface
