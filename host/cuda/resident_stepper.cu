@@ -291,7 +291,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     start_.download(list.start.data());
     nbr_.download(list.nbr.data());
     hist_.download(list.hist.data());
-    list.restore_mirror(state.settings.pairs_once, history_);
+    list.restore_mirror(state.pairs_once());
     std::size_t s = 0;
     auto get = [&](auto &slot) {
       std::vector<Real> *to[7] = {&slot.overlap, &slot.nx, &slot.ny, &slot.nz, &slot.vx, &slot.vy, &slot.vz};

@@ -148,7 +148,7 @@ template <class Real> void Simulation<Real>::load_checkpoint(const std::filesyst
     if (j >= n) r.fail(fmt::format("a neighbour index {} beyond the {} particles", j, n));
   for (const auto j : p.list_index)
     if (j != no_index && j >= n) r.fail(fmt::format("a list index {} beyond the {} particles", j, n));
-  state_.list.restore_mirror(state_.settings.pairs_once, law_history(state_.pair_law));
+  state_.list.restore_mirror(state_.pairs_once());
   fixed_ = std::size_t(std::count(p.inv_m.begin(), p.inv_m.end(), Real(0)));
   asleep_ = std::size_t(std::count(p.mobile.begin(), p.mobile.end(), Real(0))) - fixed_;
   if (state_.settings.sleep) find_border();

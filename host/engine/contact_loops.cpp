@@ -81,7 +81,7 @@ template <class Real> void pair_forces(const ContactLaw &law, const Particles<Re
     return;
   }
   const PairLaw<Real> queue_law = pair_law<Real>(law);
-  if (queue_law.history == 0 && list.once()) pair_forces_once(queue_law, p, list);
+  if (list.once() && law_pairs_once(law)) pair_forces_once(queue_law, p, list);
   else pair_forces_every_entry(queue_law, p, list);
 }
 

@@ -74,10 +74,12 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   }
   nbr.resize(start[n]);
   mirror.resize(start[n]);
+  pair_entry.resize(pairs);
   for (std::size_t i = 0; i < n; ++i)
     for (std::uint32_t u = first_pair[i], k = upper[i]; u < first_pair[i + 1]; ++u, ++k) {
       const std::uint32_t j = pair_j[u], m = lower_[j]++;
       pair_i[u] = static_cast<std::uint32_t>(i);
+      pair_entry[u] = k;
       nbr[k] = j;
       nbr[m] = static_cast<std::uint32_t>(i);
       mirror[k] = m;
@@ -85,7 +87,7 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
     }
   hist.assign(std::size_t(start[n]) * history, Real(0));
 
-  has_mirror_ = with_mirror && history == 0;
+  has_mirror_ = with_mirror;
   // Zero between calls of the pair loop, which leaves it so: growing keeps it all zero.
   if (has_mirror_) scratch.resize(std::max(scratch.size(), 6 * (std::size_t(start[n]) + n)));
   if (history == 0 || old_nbr_.empty()) return;
@@ -132,11 +134,13 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
   for (std::size_t i = 0; i < n; ++i) first_pair[i + 1] = first_pair[i] + (start[i + 1] - upper[i]);
   pair_i.resize(first_pair[n]);
   pair_j.resize(first_pair[n]);
+  pair_entry.resize(first_pair[n]);
   parallel_for(this_thread_team(), n, [&](long long ii) {
     const auto i = static_cast<std::uint32_t>(ii);
     for (std::uint32_t k = upper[i], u = first_pair[i]; k < start[i + 1]; ++k, ++u) {
       pair_i[u] = i;
       pair_j[u] = nbr[k];
+      pair_entry[u] = k;
     }
   });
 }

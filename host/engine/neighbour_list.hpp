@@ -22,7 +22,8 @@ template <class Real> class NeighbourList {
   // for particles it did not know); history values of pairs present in both lists are copied, new
   // pairs start at zero. Lists j when |x_i - x_j| < r_i + r_j + skin (minimum image).
   // with_mirror: also find each entry's mirror (the entry (j, i) of (i, j)) and size the scratch of
-  // the CPU loop that evaluates each pair once (laws without history, see engine/pair_loops.hpp).
+  // the CPU loop that evaluates each pair once (laws without history, or whose history mirrors: see
+  // law_pairs_once and engine/pair_loops.hpp).
   void build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid, const std::vector<std::uint32_t> &cell_start,
              const std::vector<std::uint32_t> &cell, const Domain &domain, Real skin, unsigned history,
              bool with_mirror = false, const Real *mobile = nullptr);
@@ -30,17 +31,17 @@ template <class Real> class NeighbourList {
   ListView<Real> view() {
     const bool once = has_mirror_ && !nbr.empty();
     if (!once) return {start.data(), nbr.data(), hist.data()};
-    return {start.data(), nbr.data(),    hist.data(),   mirror.data(),     scratch.data(),
-            upper.data(), pair_i.data(), pair_j.data(), first_pair.data(), &balance_};
+    return {start.data(),  nbr.data(),    hist.data(),       mirror.data(),     scratch.data(), upper.data(),
+            pair_i.data(), pair_j.data(), first_pair.data(), pair_entry.data(), &balance_};
   }
   std::size_t entries() const { return nbr.size(); }
   // The particles whose pairs each of `threads` threads evaluates in the pair loop of pair_loops.hpp
   // (thread t: [cuts[t], cuts[t + 1])), when that loop is used; false otherwise.
   bool pair_owners(int threads, std::vector<std::size_t> &cuts) const;
   // After start/nbr were replaced (a checkpoint): finds the mirrors again when asked.
-  void restore_mirror(bool with_mirror, unsigned history) {
+  void restore_mirror(bool with_mirror) {
     has_mirror_ = false;
-    if (with_mirror && history == 0 && !nbr.empty()) find_mirrors();
+    if (with_mirror && !nbr.empty()) find_mirrors();
   }
   void clear() {
     start.clear();
@@ -56,9 +57,10 @@ template <class Real> class NeighbourList {
  private:
   void find_mirrors();
 
-  // Mirror entries, each particle's first upper entry, the upper entries as a flat sequence, and
-  // the pair loop's scratch (a record of 6 values per entry, then 6 running sums per particle).
-  std::vector<std::uint32_t> mirror, upper, pair_i, pair_j, first_pair;
+  // Mirror entries, each particle's first upper entry, the upper entries as a flat sequence (with
+  // their entries), and the pair loop's scratch (a record of 6 values per entry, then 6 running sums
+  // per particle).
+  std::vector<std::uint32_t> mirror, upper, pair_i, pair_j, first_pair, pair_entry;
   std::vector<Real> scratch;
   PairBalance balance_{};
   bool has_mirror_ = false;

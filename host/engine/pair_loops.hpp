@@ -20,8 +20,15 @@
 // entry (an entry that does not touch keeps its zero record), and it is summed in list order after a
 // barrier, its records cleared again.
 //
-// A law with history (or no mirror) has every entry evaluated with its own history: each thread sweeps
-// its particles' full lists, clears the history of entries out of reach, and queues the others.
+// A law whose history mirrors (law_pairs_once: its values seen from j are the negation of those seen
+// from i) has each touching pair evaluated once too, with the history of the pair's entry (i, j); the
+// loop then writes the negation to the mirror entry (j, i), and clears both entries of a pair out of
+// reach that holds any value. The list's history is then that of evaluating every entry (equal values;
+// a zero's sign may differ), and so are the forces, bit for bit.
+//
+// Any other law with history (or a list without mirrors) has every entry evaluated with its own
+// history: each thread sweeps its particles' full lists, clears the history of entries out of reach,
+// and queues the others.
 #pragma once
 #include <engine/minimum_image.hpp>
 #include <engine/team.hpp>
@@ -47,16 +54,17 @@ struct PairBalance {
 
 // The list as the pair loops walk it: the plugin ABI's list (start, nbr, hist) and, for laws without
 // history, each entry's mirror (the entry (j, i) of (i, j)), each particle's first upper entry (j > i),
-// the upper entries of all particles as one flat sequence (pair u is (pair_i[u], pair_j[u]); particle
-// i's are [first_pair[i], first_pair[i + 1])), and the scratch: a record of 6 values per entry, then 6
-// running sums per particle, all zero on entry to the loop and on exit. Null where absent.
+// the upper entries of all particles as one flat sequence (pair u is (pair_i[u], pair_j[u]), the list's
+// entry pair_entry[u]; particle i's are [first_pair[i], first_pair[i + 1])), and the scratch: a record
+// of 6 values per entry, then 6 running sums per particle, all zero on entry to the loop and on exit.
+// Null where absent.
 template <class Real> struct ListView {
   const std::uint32_t *start = nullptr, *nbr = nullptr;
   Real *hist = nullptr;
   const std::uint32_t *mirror = nullptr;
   Real *scratch = nullptr;
   const std::uint32_t *upper = nullptr;
-  const std::uint32_t *pair_i = nullptr, *pair_j = nullptr, *first_pair = nullptr;
+  const std::uint32_t *pair_i = nullptr, *pair_j = nullptr, *first_pair = nullptr, *pair_entry = nullptr;
   PairBalance *balance = nullptr;  // null: equal shares of the entries
 
   bool once() const { return mirror && scratch && pair_i; }
@@ -179,15 +187,22 @@ template <class Real> struct PairBatch {
   PairQueue<Real> queue(int size, const ListView<Real> &list, bool both) {
     return {std::uint32_t(size), std::uint32_t(capacity), i, j, dx, dy, dz, entry, list.hist, fi, both ? fj : nullptr};
   }
-  // Evaluates the first `size` queued pairs (each pair once) and adds their contributions in queue order.
+  // Evaluates the first `size` queued pairs (each pair once), keeps the mirror entries' history, and adds
+  // their contributions in queue order.
   void flush(int size, const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list,
              PairSweep<Real> &sweep) {
     if (size == 0) return;
     law(p, queue(size, list, true));
+    if (const unsigned history = law.history)
+      for (int q = 0; q < size; ++q) {
+        const Real *h = list.hist + std::size_t(entry[q]) * history;
+        Real *m = list.hist + std::size_t(list.mirror[entry[q]]) * history;
+        for (unsigned c = 0; c < history; ++c) m[c] = -h[c];
+      }
     for (int q = 0; q < size; ++q) {
       const std::uint32_t pi = i[q], pj = j[q];
       // records only: the entry, looked up (rare: particles at the border of a thread's range)
-      auto entry_of = [&] { return upper_entry(list, pi, pj); };
+      auto entry_of = [&] { return law.history ? entry[q] : upper_entry(list, pi, pj); };
       sweep.add(list, pi, entry_of, {fi[q], fi[capacity + q], fi[2 * capacity + q]},
                 {fi[3 * capacity + q], fi[4 * capacity + q], fi[5 * capacity + q]});
       sweep.add(list, pj, [&] { return list.mirror[entry_of()]; }, {fj[q], fj[capacity + q], fj[2 * capacity + q]},
@@ -238,15 +253,31 @@ void add_waiting_records(const Particles<Real> &p, const ListView<Real> &list, c
   }
 }
 
-// One thread's sweep over its range, compiled once per combination of periodic axes (and with or
-// without a gap the law reaches across) so that the filter has no branch on them.
-template <bool PX, bool PY, bool PZ, bool Gap, class Real>
+// The pairs of entries `apart[0 .. n)` (their entries (i, j)) have left the law's reach: a pair whose
+// history holds any value forgets it, in both entries. Most hold none (they never touched, or were
+// cleared before): a read, where clearing every entry would write both.
+template <class Real>
+void forget_apart(const ListView<Real> &list, unsigned history, const std::uint32_t *apart, int n) {
+  for (int a = 0; a < n; ++a) {
+    Real *h = list.hist + std::size_t(apart[a]) * history;
+    bool held = false;
+    for (unsigned c = 0; c < history; ++c) held = held || h[c] != 0;
+    if (!held) continue;
+    Real *m = list.hist + std::size_t(list.mirror[apart[a]]) * history;
+    for (unsigned c = 0; c < history; ++c) h[c] = m[c] = 0;
+  }
+}
+
+// One thread's sweep over its range, compiled once per combination of periodic axes (with or without
+// a gap the law reaches across, and history) so that the filter has no branch on them.
+template <bool PX, bool PY, bool PZ, bool Gap, bool History, class Real>
 void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list,
                  PairSweep<Real> &shared_sweep) {
   PairSweep<Real> sweep = shared_sweep;  // a copy the stores into the queue cannot alias: kept in registers
   const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
   const Real *x = p.x, *y = p.y, *z = p.z, *r = p.r;
-  const std::uint32_t *pair_i = list.pair_i, *pair_j = list.pair_j;
+  const std::uint32_t *pair_i = list.pair_i, *pair_j = list.pair_j, *pair_entry = list.pair_entry;
+  std::uint32_t apart[PairBatch<Real>::chunk];  // History: the entries of a chunk's pairs out of reach
   std::uint32_t done = sweep.lo;  // the particles below this one got their sums (or wait for the barrier)
   auto finish_up_to = [&](std::uint32_t end) {
     for (; done < end; ++done) {
@@ -263,18 +294,27 @@ void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListV
   for (std::uint32_t u = list.first_pair[sweep.lo]; u < end;) {
     // a chunk of pairs, each written to the queue and kept (counted) only when touching: no branch
     const std::uint32_t stop = min(end, u + std::uint32_t(Batch::chunk));
+    int parted = 0;
     for (; u < stop; ++u) {
       const std::uint32_t i = pair_i[u], j = pair_j[u];
       const Real ddx = wrap_axis<PX>(x[i] - x[j], lx), ddy = wrap_axis<PY>(y[i] - y[j], ly),
                  ddz = wrap_axis<PZ>(z[i] - z[j], lz);
       const Real reach = Gap ? r[i] + r[j] + law.range : r[i] + r[j];
+      const bool near = ddx * ddx + ddy * ddy + ddz * ddz < reach * reach;
       batch.i[queued] = i;
       batch.j[queued] = j;
       batch.dx[queued] = ddx;
       batch.dy[queued] = ddy;
       batch.dz[queued] = ddz;
-      queued += ddx * ddx + ddy * ddy + ddz * ddz < reach * reach ? 1 : 0;
+      if constexpr (History) {
+        const std::uint32_t k = pair_entry[u];
+        batch.entry[queued] = k;
+        apart[parted] = k;
+        parted += near ? 0 : 1;
+      }
+      queued += near ? 1 : 0;
     }
+    if constexpr (History) forget_apart(list, law.history, apart, parted);
     if (queued > Batch::capacity - Batch::chunk) {
       batch.flush(queued, law, p, list, sweep);
       queued = 0;
@@ -343,7 +383,8 @@ void sweep_entries(const PairLaw<Real> &law, const Particles<Real> &p, const Lis
 }
 }  // namespace detail
 
-// The pair forces of a law without history, each touching pair evaluated once (list.once()).
+// The pair forces of a law without history or whose history mirrors, each touching pair evaluated once
+// (list.once()).
 template <class Real> void pair_forces_once(const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list) {
   const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0, gap = law.range > 0;
   const Team *team_of_thread = this_thread_team();
@@ -358,8 +399,13 @@ template <class Real> void pair_forces_once(const PairLaw<Real> &law, const Part
     sweep.find_waiting_end(list);
     auto sweep_with = [&]<bool PX, bool PY, bool PZ>() {
       with_simd([&] {
-        if (gap) detail::sweep_pairs<PX, PY, PZ, true>(law, p, list, sweep);
-        else detail::sweep_pairs<PX, PY, PZ, false>(law, p, list, sweep);
+        if (law.history) {
+          if (gap) detail::sweep_pairs<PX, PY, PZ, true, true>(law, p, list, sweep);
+          else detail::sweep_pairs<PX, PY, PZ, false, true>(law, p, list, sweep);
+        } else {
+          if (gap) detail::sweep_pairs<PX, PY, PZ, true, false>(law, p, list, sweep);
+          else detail::sweep_pairs<PX, PY, PZ, false, false>(law, p, list, sweep);
+        }
       });
     };
     if (px) {

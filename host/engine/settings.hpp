@@ -34,10 +34,11 @@ struct Settings {
   double speed_limit = 0;
   std::uint32_t check_every = 10;
 
-  // Laws without history: the CPU loop evaluates each touching pair once and gives the other
-  // particle the mirror image (engine/pair_loops.hpp). Bitwise the same results as evaluating every
-  // list entry for any law whose answer seen from j is the mirror of that seen from i (all laws
-  // written with vector operations), and about twice as fast. false: every entry (for tests).
+  // Laws without history, or whose history mirrors (law_pairs_once): the CPU loop evaluates each
+  // touching pair once and gives the other particle the mirror image (engine/pair_loops.hpp). Bitwise
+  // the same results as evaluating every list entry for any law whose answer seen from j is the mirror
+  // of that seen from i (all laws written with vector operations), and about twice as fast. false:
+  // every entry (for tests).
   bool pairs_once = true;
 
   // While no particle sleeps, plane walls are evaluated over every particle in place (records

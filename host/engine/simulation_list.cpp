@@ -92,7 +92,7 @@ template <class Real> void Simulation<Real>::rebuild_list() {
     });
   }
   state_.list.build(p, grid, cells_.start, cells_.sorted, state_.domain, Real(list_skin), law_history(state_.pair_law),
-                    state_.settings.pairs_once, state_.settings.sleep && asleep_ > 0 ? p.mobile.data() : nullptr);
+                    state_.pairs_once(), state_.settings.sleep && asleep_ > 0 ? p.mobile.data() : nullptr);
   if (state_.settings.sleep) find_border();
   asleep_at_build_ = asleep_;
   for (auto &ge : state_.geometries) find_near_geometry(ge);

@@ -77,6 +77,8 @@ template <class Real> struct StepState {
     for (auto &ge : geometries) f(ge.slot);
   }
   void resize_walls();
+  // Whether the list keeps mirrors for the CPU loop that evaluates each pair once (law_pairs_once).
+  bool pairs_once() const { return settings.pairs_once && law_pairs_once(pair_law); }
 };
 
 extern template struct StepState<double>;

@@ -1,11 +1,12 @@
-// The engine's fast paths give exactly the results of the plain ones: a law without history
-// evaluated once per pair (engine/pair_loops.hpp) against every list entry, for any number of
+// The engine's fast paths give exactly the results of the plain ones: a law without history, or whose
+// history mirrors, evaluated once per pair (engine/pair_loops.hpp) against every list entry, for any number of
 // threads, with every instruction set the processor runs; planes evaluated in place against a gathered copy of the
 // touching particles; a geometry evaluated for its near particles only against every particle; sleeping particles
 // (Settings::sleep): no bit changes where none may sleep, asleep means exactly still, woken by impacts.
 #include "engine_test_law.hpp"
 
 #include <engine/errors.hpp>
+#include <spreadmap/contact_parts.hpp>
 #include <spreadmap/simd.hpp>
 
 #include <cstring>
@@ -49,7 +50,28 @@ struct TestSlider {
   }
 };
 
-ContactLaw bind_slider(const TestSlider &law) { return {&sm::detail::ContactOps<TestSlider>::table, &law}; }
+// Spring-dashpot normal force and a Cundall-Strack tangential spring with Coulomb cap: 3 values of
+// history per contact, the spring's elongation, which seen from the other body is its negation.
+struct TestSpring {
+  static constexpr int history = 3;
+  static constexpr bool history_mirrors = true;
+  double k = 100, zeta = 0.2, mu = 0.4, k_t = 30;
+
+  double natural_frequency(double m_eq, double) const { return std::sqrt(std::max(k, 3.5 * k_t) / m_eq); }
+  double damping_ratio(double, double) const { return zeta; }
+  bool makes_torque() const { return true; }
+
+  template <class Real> SM_HD sm::ContactForce<Real> operator()(const sm::ContactState<Real> &c, Real *hist) const {
+    sm::ContactForce<Real> f;
+    f.normal = Real(k) * c.overlap - Real(2 * zeta) * std::sqrt(Real(k) * c.m_eq) * c.v_n;
+    const Real fn = f.normal < 0 ? -f.normal : f.normal;
+    const Real damping = Real(2 * zeta) * std::sqrt(Real(k_t) * Real(2.0 / 7.0) * c.m_eq);
+    f.tangent = sm::tangential_spring(c.normal, c.v_t, Real(k_t), damping, Real(mu) * fn, c.dt, hist);
+    return f;
+  }
+};
+
+template <class Law> ContactLaw bind_law(const Law &law) { return {&sm::detail::ContactOps<Law>::table, &law}; }
 
 // A ball of radius R moving at constant velocity: a geometry with a bound on its speed.
 struct TestBall {
@@ -98,14 +120,15 @@ Settings quiet() {
   return s;
 }
 
-// Polydisperse spheres falling into a periodic box onto a floor, with friction and rolling
-// resistance: many contacts, several list builds.
-struct Scene {
-  TestSlider pair, wall{200, 0.2, 0.3, 200, 0.05};
+// Polydisperse spheres falling into a periodic box onto a floor, with friction (and, for the slider,
+// rolling resistance): many contacts, several list builds.
+template <class Law> struct SceneOf {
+  Law pair, wall;
   Domain domain{{0, 0, 0}, {0.012, 0.012, 0.05}, {true, true, false}};
+  SceneOf(Law pair, Law wall) : pair(pair), wall(wall) {}
   std::unique_ptr<Simulation<double>> make(Settings settings, std::size_t n = 1500) {
-    auto sim = std::make_unique<Simulation<double>>(domain, bind_slider(pair), settings);
-    sim->add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_slider(wall), true, "floor"});
+    auto sim = std::make_unique<Simulation<double>>(domain, bind_law(pair), settings);
+    sim->add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_law(wall), true, "floor"});
     sim->add_particles(random_lattice(n, 0.0005, {0, 0, 0.0006}, {0.012, 0.012, 0.045}, 0.3), 2500);
     return sim;
   }
@@ -120,17 +143,32 @@ struct Scene {
     return sim;
   }
 };
+struct Scene : SceneOf<TestSlider> {
+  Scene() : SceneOf({}, {200, 0.2, 0.3, 200, 0.05}) {}
+};
+struct SpringScene : SceneOf<TestSpring> {
+  SpringScene() : SceneOf({}, {200, 0.2, 0.3, 60}) {}
+};
 
-}  // namespace
-
-TEST(EnginePairsOnce, SameBitsAsEveryEntryForAnyThreadCount) {
-  Scene scene;
+template <class AnyScene> void expect_pairs_once_same_bits_as_every_entry() {
+  AnyScene scene;
+  ASSERT_TRUE(law_pairs_once(bind_law(scene.pair)));
   auto run = [&](bool on, int threads) { return scene.run(&Settings::pairs_once, on, threads, 800); };
   const auto every = run(false, 2), one = run(true, 1), two = run(true, 2), three = run(true, 3);
   EXPECT_GT(every->counters().list_builds, 3u) << "the scene should rebuild its list several times";
   EXPECT_TRUE(same_state(*every, *one)) << "evaluating each pair once changes the result";
   EXPECT_TRUE(same_state(*one, *two)) << "1 vs 2 threads differ";
   EXPECT_TRUE(same_state(*one, *three)) << "1 vs 3 threads differ";
+}
+
+}  // namespace
+
+TEST(EnginePairsOnce, SameBitsAsEveryEntryForAnyThreadCount) { expect_pairs_once_same_bits_as_every_entry<Scene>(); }
+
+// The tangential spring's history, kept on the pair's entry (i, j) and mirrored to (j, i), gives the
+// bits of each entry evolving its own, through contacts that form, slide, part and move between threads.
+TEST(EnginePairsOnce, ALawWhoseHistoryMirrorsGivesTheSameBitsAsEveryEntry) {
+  expect_pairs_once_same_bits_as_every_entry<SpringScene>();
 }
 
 // A team larger than PairBalance::max_threads: the pair loop splits the entries equally and each
@@ -146,8 +184,8 @@ TEST(EnginePairsOnce, SameBitsOnATeamLargerThanTheBalanceTunes) {
 
 // The pair and wall queues, the kicks and the plane overlaps compiled for plain x86-64, AVX2 and
 // AVX-512 (those the processor runs): the same IEEE operations in the same order on any lane width.
-TEST(EngineSimd, EveryInstructionSetGivesTheSameBits) {
-  Scene scene;
+template <class AnyScene> void expect_every_instruction_set_same_bits() {
+  AnyScene scene;
   const sm::SimdLevel in_use = sm::simd_level();
   auto run = [&](sm::SimdLevel level, int threads) {
     EXPECT_EQ(sm::set_simd_level(level), level);
@@ -162,20 +200,28 @@ TEST(EngineSimd, EveryInstructionSetGivesTheSameBits) {
   sm::set_simd_level(in_use);
 }
 
-TEST(EnginePairsOnce, ResumeIsBitwiseIdentical) {
+TEST(EngineSimd, EveryInstructionSetGivesTheSameBits) { expect_every_instruction_set_same_bits<Scene>(); }
+TEST(EngineSimd, EveryInstructionSetGivesTheSameBitsWithMirroredHistory) {
+  expect_every_instruction_set_same_bits<SpringScene>();
+}
+
+template <class AnyScene> void expect_resume_bitwise_identical() {
   const auto path = std::filesystem::temp_directory_path() / ("engine_once_" + std::to_string(::getpid()) + ".bin");
-  Scene scene;
+  AnyScene scene;
   auto whole = scene.make(quiet());
   whole->run_steps(300);
   whole->save_checkpoint(path);
   whole->run_steps(300);
-  auto resumed = std::make_unique<Simulation<double>>(scene.domain, bind_slider(scene.pair), quiet());
-  resumed->add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_slider(scene.wall), true, "floor"});
+  auto resumed = std::make_unique<Simulation<double>>(scene.domain, bind_law(scene.pair), quiet());
+  resumed->add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_law(scene.wall), true, "floor"});
   resumed->load_checkpoint(path);
   resumed->run_steps(300);
   std::filesystem::remove(path);
   EXPECT_TRUE(same_state(*whole, *resumed));
 }
+
+TEST(EnginePairsOnce, ResumeIsBitwiseIdentical) { expect_resume_bitwise_identical<Scene>(); }
+TEST(EnginePairsOnce, ResumeIsBitwiseIdenticalWithMirroredHistory) { expect_resume_bitwise_identical<SpringScene>(); }
 
 TEST(EnginePlanes, InPlaceGivesTheSameBitsAsTheGatheredCopyForAnyThreadCount) {
   // The falling packing lands on the floor: many particles touch it, some leave it again.
@@ -198,7 +244,7 @@ TEST(EngineGeometry, NearParticlesOnlyGiveTheSameBitsAsEveryParticle) {
   unbounded.max_surface_speed = nullptr;
   auto run = [&](const sm::sm_spreader_ops_v2 *ops) {
     auto sim = scene.make(quiet());
-    if (ops) sim->add_geometry({ops, &ball, bind_slider(scene.wall), "ball"});
+    if (ops) sim->add_geometry({ops, &ball, bind_law(scene.wall), "ball"});
     sim->run_steps(1500);
     return sim;
   };
@@ -315,8 +361,8 @@ TEST(EngineSleep, ResumeIsBitwiseIdentical) {
   whole.run_steps(700);
   whole.save_checkpoint(path);
   whole.run_steps(700);
-  Simulation<double> resumed(heap.scene.domain, bind_slider(heap.scene.pair), heap.settings);
-  resumed.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_slider(heap.scene.wall), true, "floor"});
+  Simulation<double> resumed(heap.scene.domain, bind_law(heap.scene.pair), heap.settings);
+  resumed.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, bind_law(heap.scene.wall), true, "floor"});
   resumed.load_checkpoint(path);
   resumed.run_steps(700);
   std::filesystem::remove(path);

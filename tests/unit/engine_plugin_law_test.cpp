@@ -84,9 +84,10 @@ namespace {
 // Three spheres in a row along x on a floor plane, barely touching, stepped `steps` times (one thread:
 // below the engine's parallel size); their positions, velocities and spins, in that order, at the end.
 std::vector<double> row_on_floor(const sm::engine::ContactLaw &law, std::uint64_t steps,
-                            std::array<double, 3> gravity = {0, 0, -9.81}) {
+                            std::array<double, 3> gravity = {0, 0, -9.81}, bool pairs_once = true) {
   sm::engine::Settings s;
   s.gravity = gravity;
+  s.pairs_once = pairs_once;
   sm::engine::Simulation<double> sim({{0, 0, 0}, {0.002, 0.002, 0.002}, {true, true, false}}, law, s);
   sim.add_plane_wall({{0, 0, 0}, {0, 0, 1}, {0, 0, 0}, law});
   sm::engine::ParticleSet p;
@@ -128,6 +129,24 @@ TEST(PluginLaw, APluginOfTheOlderMinorAbiLoadsAndStepsBitForBit) {
     load_contact_law("hooke_history", {{"rolling_friction", 0.1}, {"rolling_model", "epsd"}}, {older});
   });
   EXPECT_TRUE(contains(refused, "rolling_model epsd needs plugin ABI 10.1")) << refused;
+}
+
+// hertz_mindlin with DMT cohesion and the rolling spring keeps 6 values of history a contact, all of
+// which mirror (ABI 10.4): each pair evaluated once steps the row bit for bit as every list entry
+// evaluated with its own history.
+TEST(PluginLaw, ALawWhoseHistoryMirrorsStepsBitForBitWithEachPairOnce) {
+  const auto law = load_contact_law("hertz_mindlin", {{"youngs_modulus", "26 MPa"},
+                                                      {"friction", 0.5},
+                                                      {"rolling_friction", 0.1},
+                                                      {"rolling_model", "epsd"},
+                                                      {"surface_energy", "0.1 mJ/m^2"},
+                                                      {"pull_off", "dmt"}});
+  EXPECT_EQ(sm::engine::law_history(law.law()), 6u);
+  EXPECT_TRUE(sm::engine::law_pairs_once(law.law()));
+  const std::array<double, 3> slope{2, 0, -9.81};
+  const auto every = row_on_floor(law.law(), 3000, slope, false), once = row_on_floor(law.law(), 3000, slope, true);
+  EXPECT_EQ(every, once);
+  EXPECT_GT(std::abs(once[9]), 1e-3) << "the spheres move: the test compares forces, not rest";
 }
 
 // A law built for ABI 10.2 has no queue functions (10.3): this host hands it the whole list and the

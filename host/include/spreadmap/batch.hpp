@@ -57,9 +57,11 @@ template <class Real> struct WallContacts {
 
 // ABI 10.3. A queue of pairs within the law's reach, in the order the engine adds their forces. Pair q
 // is (i[q], j[q]) with d = (dx, dy, dz)[q] = x_i - x_j (minimum image). The law writes the force and
-// torque on i to on_i[c * stride + q] (c: force x, y, z, torque x, y, z) and, when on_j is given (laws
-// without history: each touching pair is queued once), the same for j from the same evaluation. A law
-// with history finds the pair's values at hist + entry[q] * its history count, and is given on_j null.
+// torque on i to on_i[c * stride + q] (c: force x, y, z, torque x, y, z) and, when on_j is given (each
+// touching pair is queued once: laws without history, and since 10.4 laws whose history mirrors), the
+// same for j from the same evaluation. A law with history finds the pair's values at hist + entry[q] *
+// its history count: with on_j, entry[q] is the pair's entry (i, j) and the engine keeps the entry
+// (j, i) as its negation; without, each entry is queued with its own history.
 template <class Real> struct PairQueue {
   std::uint32_t n, stride;
   const std::uint32_t *i, *j;

@@ -10,6 +10,10 @@
 //   double damping_ratio(double m_eq, double r_eff) const;      zeta of its dashpot at that stiffness
 //   bool makes_torque() const;                    whether any tangential force or rolling torque exists
 //   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real>&, Real *hist) const;
+//   static constexpr bool history_mirrors = true;  optional, for a law with history whose every value,
+//                                                 seen from the other body, is the negation (a vector
+//                                                 of the contact in the global frame): each touching
+//                                                 pair is then evaluated once (evaluate_pairs)
 // and, with the cohesion part, `Cohesion cohesion` and force<Cohesive>() (see WithCohesion below). A law
 // whose cohesion reaches across a gap (cohesion.range > 0) is given pairs and wall records down to
 // overlap = -range, and must then return the attraction alone there (no repulsion, friction or history).
@@ -69,6 +73,11 @@ typedef struct sm_contact_ops_v1 {
                          const WallQueue<double> *q);
   void (*wall_queue_f32)(const void *self, const Particles<float> *p, const WallContacts<float> *w,
                          const WallQueue<float> *q);
+#endif
+#if SPREADMAP_TARGET_ABI_MINOR >= 4
+  // ABI 10.4: 1 when every history value the instance keeps mirrors (Law::history_mirrors; the rolling
+  // spring's always does; none kept counts): the engine's pair queues then give it on_j.
+  int (*history_mirrors)(const void *self);
 #endif
 } sm_contact_ops_v1;
 
@@ -224,12 +233,19 @@ template <class Real> struct QueueRows {
 };
 }  // namespace detail
 
+// A law whose history, seen from the other body, is the negation of its own (Law::history_mirrors).
+template <class Law>
+concept MirroredHistory = Law::history > 0 && requires {
+  requires Law::history_mirrors;
+};
+
 // The forces of a queue of pairs (PairQueue), in one loop the compiler vectorises: a law written with
 // selects runs on SIMD lanes with the same bits, as lanes do the same IEEE operations in the same
 // order. With on_j, j's contribution is formed from the same evaluation: seen from j, the contact's
 // kinematics are the exact negation of those seen from i (IEEE subtraction, products and the
 // minimum-image wrap are antisymmetric), so a law written with vector operations returns the same F_n
-// and the negated tangential force and torque there.
+// and the negated tangential force and torque there; a law whose history mirrors holds the negated
+// history there too, so the same holds for it step after step (values equal; a zero's sign aside).
 template <class Law, class Real>
 void evaluate_pairs(const Law &shared_law, const Particles<Real> &shared_p, const PairQueue<Real> &q) {
   const Law law = shared_law;           // copies the loop's stores cannot alias: their
@@ -238,14 +254,15 @@ void evaluate_pairs(const Law &shared_law, const Particles<Real> &shared_p, cons
   const std::uint32_t *qi = q.i, *qj = q.j;
   const Real *dx = q.dx, *dy = q.dy, *dz = q.dz;
   const detail::QueueRows<Real> on_i(q.on_i, q.stride), on_j(q.on_j, q.stride);
-  if constexpr (Law::history == 0) {
+  if constexpr (Law::history == 0 || MirroredHistory<Law>) {
     if (q.on_j) {
       // ivdep, not omp simd: GCC 12 does not vectorise this loop with the lanes' private copies omp simd makes
 #pragma GCC ivdep
       for (std::uint32_t k = 0; k < n; ++k) {
         const Vec3<Real> d{dx[k], dy[k], dz[k]};
         const ContactState<Real> c = pair_contact_state(p, qi[k], qj[k], d, dot(d, d));
-        const ContactForce<Real> f = law(c, static_cast<Real *>(nullptr));
+        Real *h = Law::history ? q.hist + std::size_t(q.entry[k]) * Law::history : nullptr;
+        const ContactForce<Real> f = law(c, h);
         const ContactForce<Real> mirrored{f.normal, -f.tangent, -f.torque};  // the law's answer seen from j
         Vec3<Real> a{0, 0, 0}, ta{0, 0, 0}, b{0, 0, 0}, tb{0, 0, 0};
         accumulate(f, c.normal, p.r[qi[k]], a, ta);
@@ -310,6 +327,8 @@ inline constexpr int rolling_spring_history = 3;
 
 template <class Law, bool Cohesive, bool Spring> struct LoopForm {
   static constexpr int history = Law::history + (Spring ? rolling_spring_history : 0);
+  // the rolling spring's history mirrors: the form's does when the law's own does, or when it has none
+  static constexpr bool history_mirrors = Law::history == 0 || MirroredHistory<Law>;
   Law law;
   SM_HD double range() const requires Cohesive { return law.cohesion.range; }
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
@@ -375,8 +394,14 @@ template <class Law> struct ContactOps {
     in_loop_form(law(s), [&](const auto &form) { with_simd([&] { evaluate_walls(form, *p, *w, *q); }); });
   }
   static std::uint32_t history(const void *s) { return static_cast<std::uint32_t>(history_of(law(s))); }
+  static int mirrors(const void *) { return Law::history == 0 || MirroredHistory<Law> ? 1 : 0; }
   static constexpr std::uint32_t most_history = Law::history + (HasRolling<Law> ? rolling_spring_history : 0);
-#if SPREADMAP_TARGET_ABI_MINOR >= 3
+#if SPREADMAP_TARGET_ABI_MINOR >= 4
+  static constexpr sm_contact_ops_v1 table = {
+      most_history,  &frequency, &zeta,   &torque,            &pairs<double>,     &pairs<float>,
+      &walls<double>, &walls<float>, &range, &history, &pair_queue<double>, &pair_queue<float>,
+      &wall_queue<double>, &wall_queue<float>, &mirrors};
+#elif SPREADMAP_TARGET_ABI_MINOR >= 3
   static constexpr sm_contact_ops_v1 table = {
       most_history,  &frequency, &zeta,   &torque,            &pairs<double>,     &pairs<float>,
       &walls<double>, &walls<float>, &range, &history, &pair_queue<double>, &pair_queue<float>,

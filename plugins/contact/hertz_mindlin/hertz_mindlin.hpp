@@ -51,6 +51,7 @@ struct HertzMindlin {
       param_vdw_cutoff,
   };
   static constexpr int history = 3;
+  static constexpr bool history_mirrors = true;  // the spring's elongation, a global vector: -s seen from j
 
   double e_star;  // E* [Pa]
   double g_star;  // G* [Pa]

@@ -44,6 +44,7 @@ struct HookeHistory {
       param_vdw_cutoff,
   };
   static constexpr int history = 3;
+  static constexpr bool history_mirrors = true;  // the spring's elongation, a global vector: -s seen from j
 
   LinearNormal normal;
   double mu;
