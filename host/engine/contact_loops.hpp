@@ -10,6 +10,16 @@
 
 namespace spreadmap::engine {
 
+// Whether the CPU pair loop may evaluate each touching pair once for this law (engine/pair_loops.hpp):
+// it keeps no history, or (ABI 10.4) every value it keeps mirrors, the other body's the negation, and
+// its queues have room for them.
+inline bool law_pairs_once(const ContactLaw &law) {
+  const std::uint32_t history = law_history(law);
+  if (history == 0) return true;
+  return law.abi_minor >= 4 && law.ops->history_mirrors && law.ops->history_mirrors(law.self) != 0 &&
+         history <= detail::queued_history_max;
+}
+
 // Adds the forces of every pair of `list` within the law's reach to p's accumulators.
 template <class Real> void pair_forces(const ContactLaw &law, const Particles<Real> &p, const ListView<Real> &list);
 

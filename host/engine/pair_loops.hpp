@@ -38,8 +38,10 @@
 #include <spreadmap/simd.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstdint>
+#include <type_traits>
 
 namespace spreadmap::engine {
 
@@ -176,6 +178,10 @@ template <class Real> std::uint32_t upper_entry(const ListView<Real> &list, std:
                                     list.nbr);
 }
 
+// The most history values per contact the loop that evaluates each pair once copies into its queues
+// (a law keeping more has every entry evaluated).
+inline constexpr unsigned queued_history_max = 16;
+
 // A queue of pairs of one thread, handed to the law when full or at the end.
 template <class Real> struct PairBatch {
   static constexpr int capacity = 64;
@@ -183,22 +189,31 @@ template <class Real> struct PairBatch {
   std::uint32_t i[capacity + chunk], j[capacity + chunk], entry[capacity + chunk];
   Real dx[capacity + chunk], dy[capacity + chunk], dz[capacity + chunk];
   Real fi[6 * capacity], fj[6 * capacity];  // force and torque on i, then on j, `capacity` apart
+  Real hist[queued_history_max * capacity];  // each pair once: the pairs' history, in queue order
 
   PairQueue<Real> queue(int size, const ListView<Real> &list, bool both) {
-    return {std::uint32_t(size), std::uint32_t(capacity), i, j, dx, dy, dz, entry, list.hist, fi, both ? fj : nullptr};
+    return {std::uint32_t(size), std::uint32_t(capacity), i, j, dx, dy, dz, entry, both ? hist : list.hist,
+            fi, both ? fj : nullptr};
   }
   // Evaluates the first `size` queued pairs (each pair once), keeps the mirror entries' history, and adds
   // their contributions in queue order.
   void flush(int size, const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list,
              PairSweep<Real> &sweep) {
     if (size == 0) return;
+    const unsigned history = law.history;
+    for (int q = 0; q < size; ++q) {  // the law reads and writes the history in queue order
+      const Real *e = list.hist + std::size_t(entry[q]) * history;
+      for (unsigned c = 0; c < history; ++c) hist[q * history + c] = e[c];
+    }
     law(p, queue(size, list, true));
-    if (const unsigned history = law.history)
-      for (int q = 0; q < size; ++q) {
-        const Real *h = list.hist + std::size_t(entry[q]) * history;
-        Real *m = list.hist + std::size_t(list.mirror[entry[q]]) * history;
-        for (unsigned c = 0; c < history; ++c) m[c] = -h[c];
+    for (int q = 0; q < size; ++q) {
+      const Real *h = hist + q * history;
+      Real *e = list.hist + std::size_t(entry[q]) * history, *m = list.hist + std::size_t(list.mirror[entry[q]]) * history;
+      for (unsigned c = 0; c < history; ++c) {
+        e[c] = h[c];
+        m[c] = -h[c];
       }
+    }
     for (int q = 0; q < size; ++q) {
       const std::uint32_t pi = i[q], pj = j[q];
       // records only: the entry, looked up (rare: particles at the border of a thread's range)
@@ -253,6 +268,15 @@ void add_waiting_records(const Particles<Real> &p, const ListView<Real> &list, c
   }
 }
 
+// Whether any of the n values is other than zero (of either sign): one test of their bits, no branch
+// per value.
+template <class Real> bool any_value(const Real *h, unsigned n) {
+  using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+  Bits bits = 0;
+  for (unsigned c = 0; c < n; ++c) bits |= std::bit_cast<Bits>(h[c]);
+  return Bits(bits << 1) != 0;  // the sign bits shifted out: -0 is zero
+}
+
 // The pairs of entries `apart[0 .. n)` (their entries (i, j)) have left the law's reach: a pair whose
 // history holds any value forgets it, in both entries. Most hold none (they never touched, or were
 // cleared before): a read, where clearing every entry would write both.
@@ -260,9 +284,7 @@ template <class Real>
 void forget_apart(const ListView<Real> &list, unsigned history, const std::uint32_t *apart, int n) {
   for (int a = 0; a < n; ++a) {
     Real *h = list.hist + std::size_t(apart[a]) * history;
-    bool held = false;
-    for (unsigned c = 0; c < history; ++c) held = held || h[c] != 0;
-    if (!held) continue;
+    if (!any_value(h, history)) continue;
     Real *m = list.hist + std::size_t(list.mirror[apart[a]]) * history;
     for (unsigned c = 0; c < history; ++c) h[c] = m[c] = 0;
   }

@@ -10,6 +10,7 @@
 //
 // Not thread-safe: one stepper at a time works on a state.
 #pragma once
+#include <engine/contact_loops.hpp>
 #include <engine/counters.hpp>
 #include <engine/domain.hpp>
 #include <engine/neighbour_list.hpp>

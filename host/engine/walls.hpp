@@ -29,13 +29,6 @@ inline std::uint32_t law_history(const ContactLaw &law) {
   return law.abi_minor >= 1 && law.ops->history_of ? law.ops->history_of(law.self) : law.ops->history;
 }
 
-// Whether the CPU pair loop may evaluate each touching pair once for this law (engine/pair_loops.hpp):
-// it keeps no history, or (ABI 10.4) every value it keeps mirrors, the other body's the negation.
-inline bool law_pairs_once(const ContactLaw &law) {
-  if (law_history(law) == 0) return true;
-  return law.abi_minor >= 4 && law.ops->history_mirrors && law.ops->history_mirrors(law.self) != 0;
-}
-
 // An infinite plane. Particles on the side `normal` points to touch it when closer than their
 // radius. The point moves with `velocity` (a tangential velocity is a conveyor: the plane stays put
 // but drags particles through friction). Inactive walls exert nothing and keep no history.

@@ -59,14 +59,15 @@ template <class Real> struct WallContacts {
 // is (i[q], j[q]) with d = (dx, dy, dz)[q] = x_i - x_j (minimum image). The law writes the force and
 // torque on i to on_i[c * stride + q] (c: force x, y, z, torque x, y, z) and, when on_j is given (each
 // touching pair is queued once: laws without history, and since 10.4 laws whose history mirrors), the
-// same for j from the same evaluation. A law with history finds the pair's values at hist + entry[q] *
-// its history count: with on_j, entry[q] is the pair's entry (i, j) and the engine keeps the entry
-// (j, i) as its negation; without, each entry is queued with its own history.
+// same for j from the same evaluation. A law with history finds the pair's values at hist + q * its
+// history count when on_j is given (a copy in queue order, which the engine takes from the entry
+// (i, j) and puts back, and keeps the entry (j, i) as its negation: contiguous, the loop vectorises),
+// and at hist + entry[q] * that count otherwise (the list's own, each entry queued with its own).
 template <class Real> struct PairQueue {
   std::uint32_t n, stride;
   const std::uint32_t *i, *j;
   const Real *dx, *dy, *dz;
-  const std::uint32_t *entry;  // list entries (laws with history); may be null otherwise
+  const std::uint32_t *entry;  // list entries (laws with history, without on_j); may be null otherwise
   Real *hist;
   Real *on_i, *on_j;
 };

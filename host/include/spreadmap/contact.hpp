@@ -261,7 +261,7 @@ void evaluate_pairs(const Law &shared_law, const Particles<Real> &shared_p, cons
       for (std::uint32_t k = 0; k < n; ++k) {
         const Vec3<Real> d{dx[k], dy[k], dz[k]};
         const ContactState<Real> c = pair_contact_state(p, qi[k], qj[k], d, dot(d, d));
-        Real *h = Law::history ? q.hist + std::size_t(q.entry[k]) * Law::history : nullptr;
+        Real *h = Law::history ? q.hist + std::size_t(k) * Law::history : nullptr;  // the queue's copy
         const ContactForce<Real> f = law(c, h);
         const ContactForce<Real> mirrored{f.normal, -f.tangent, -f.torque};  // the law's answer seen from j
         Vec3<Real> a{0, 0, 0}, ta{0, 0, 0}, b{0, 0, 0}, tb{0, 0, 0};

@@ -196,18 +196,34 @@ SM_HD Vec3<Real> tangential_spring(const Vec3<Real> &normal, const Vec3<Real> &v
   const Real before = norm(s);
   s -= normal * dot(s, normal);
   const Real after = norm(s);
-  if (after > 0) s *= before / after;
+  s *= after > 0 ? before / after : Real(1);  // selects, no branch (x 1 is exact): a queue vectorises
   s += v_t * dt;
   Vec3<Real> f = -(s * stiffness) - v_t * damping;
   const Real magnitude = norm(f);
-  if (magnitude > cap) {
-    f *= cap / magnitude;
-    s = -(f + v_t * damping) * (Real(1) / stiffness);
-  }
-  hist[0] = s.x;
-  hist[1] = s.y;
-  hist[2] = s.z;
+  const bool capped = magnitude > cap;
+  f *= capped ? cap / magnitude : Real(1);
+  const Vec3<Real> slipped = -(f + v_t * damping) * (Real(1) / stiffness);
+  hist[0] = capped ? slipped.x : s.x;
+  hist[1] = capped ? slipped.y : s.y;
+  hist[2] = capped ? slipped.z : s.z;
   return f;
+}
+
+// What a law with history returns where the bodies do not touch (overlap <= 0: a gap its cohesion
+// reaches across): the attraction alone, no friction or rolling, and its `History` values cleared. The
+// law computes its touching answer `f` for every contact (NaN where it does not touch: harmless, not
+// trapped) and this selects, so that a queue's loop has no branch and vectorises.
+template <bool Cohesive, int History, class Real, class Attraction>
+SM_HD ContactForce<Real> touching_only(const ContactForce<Real> &f, const ContactState<Real> &c,
+                                       const Attraction &cohesion, Real *hist) {
+  const bool touching = c.overlap > 0;
+  for (int q = 0; q < History; ++q) hist[q] = touching ? hist[q] : Real(0);
+  Real apart = 0;
+  if constexpr (Cohesive) apart = -cohesion.gap_force(c.r_eff, c.overlap);
+  const Real zero = 0;
+  return {touching ? f.normal : apart,
+          {touching ? f.tangent.x : zero, touching ? f.tangent.y : zero, touching ? f.tangent.z : zero},
+          {touching ? f.torque.x : zero, touching ? f.torque.y : zero, touching ? f.torque.z : zero}};
 }
 
 // ---------------------------------------------------------------- rolling resistance
@@ -284,13 +300,13 @@ struct Rolling {
       m -= w * (k_r * c.dt);
       const Real limit = Real(mu_r) * c.r_eff * fn_abs, size = norm(m);
       const bool mobilised = size > limit;
-      if (mobilised) m *= size > 0 ? limit / size : Real(0);
+      m *= mobilised ? (size > 0 ? limit / size : Real(0)) : Real(1);  // selects: a queue vectorises
       hist[0] = m.x;
       hist[1] = m.y;
       hist[2] = m.z;
-      if (mobilised) return m;
       const Real inertia = Real(1.4) * c.m_eq * c.r_eff * c.r_eff;
-      return m - w * (Real(2 * damping) * std::sqrt(inertia * k_r));
+      const Vec3<Real> damped = m - w * (Real(2 * damping) * std::sqrt(inertia * k_r));
+      return {mobilised ? m.x : damped.x, mobilised ? m.y : damped.y, mobilised ? m.z : damped.z};
     }
   }
   // Clears the spring (the contact ended).

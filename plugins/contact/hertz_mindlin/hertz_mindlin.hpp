@@ -150,12 +150,6 @@ struct HertzMindlin {
   template <bool Cohesive, bool Spring, class Real>
   SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
-    if (!(c.overlap > 0)) {  // apart, or across a gap within the cohesion's range: the attraction alone
-      clear_history(hist, history);
-      rolling.template clear<Spring>(hist + history);
-      if constexpr (Cohesive) f.normal = -cohesion.gap_force(c.r_eff, c.overlap);
-      return f;
-    }
     const Real a = std::sqrt(c.r_eff * c.overlap);  // contact radius
     const Real s_n = Real(2 * e_star) * a, k_t = Real(8 * g_star) * a;
     const Real fn = Real(2) / Real(3) * s_n * c.overlap - Real(alpha) * std::sqrt(c.m_eq * s_n) * c.v_n;
@@ -166,7 +160,8 @@ struct HertzMindlin {
     // the rolling spring's k_n is the secant stiffness F_n / delta = (2/3) S_n, as LIGGGHTS' epsd takes it
     f.torque = rolling.template torque<Spring>(c, fn_abs, Real(2) / Real(3) * s_n, hist + history);
     if constexpr (Cohesive) f.normal -= cohesion.force(c.r_eff, c.overlap);
-    return f;
+    // apart, or across a gap within the cohesion's range: the attraction alone, history cleared
+    return touching_only<Cohesive, history + (Spring ? Rolling::history : 0)>(f, c, cohesion, hist);
   }
 };
 

@@ -82,12 +82,6 @@ struct HookeHistory {
   template <bool Cohesive, bool Spring, class Real>
   SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
-    if (!(c.overlap > 0)) {  // apart, or across a gap within the cohesion's range: the attraction alone
-      clear_history(hist, history);
-      rolling.template clear<Spring>(hist + history);
-      if constexpr (Cohesive) f.normal = -cohesion.gap_force(c.r_eff, c.overlap);
-      return f;
-    }
     f.normal = normal.force(c.m_eq, c.overlap, c.v_n);
     const Real fn_abs = f.normal < 0 ? -f.normal : f.normal;
     const Real w = Real(normal.omega0);
@@ -95,7 +89,8 @@ struct HookeHistory {
     f.tangent = tangential_spring(c.normal, c.v_t, k_t, c.m_eq * Real(tangent_rate), Real(mu) * fn_abs, c.dt, hist);
     f.torque = rolling.template torque<Spring>(c, fn_abs, c.m_eq * w * w, hist + history);
     if constexpr (Cohesive) f.normal -= cohesion.force(c.r_eff, c.overlap);
-    return f;
+    // apart, or across a gap within the cohesion's range: the attraction alone, history cleared
+    return touching_only<Cohesive, history + (Spring ? Rolling::history : 0)>(f, c, cohesion, hist);
   }
 };
 
