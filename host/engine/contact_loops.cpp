@@ -1,4 +1,5 @@
 #include <engine/contact_loops.hpp>
+#include <engine/history_values.hpp>
 #include <engine/team.hpp>
 #include <engine/thread_team.hpp>
 
@@ -61,7 +62,8 @@ void wall_range(const ContactLaw &law, const Particles<Real> &p, const WallConta
       for (; k < stop; ++k) {
         batch.i[queued] = k;
         if (w.overlap[k] > floor) ++queued;
-        else std::fill_n(w.hist + std::size_t(k) * history, history, Real(0));  // apart: forget
+        else if (Real *h = w.hist + std::size_t(k) * history; any_value(h, history))
+          std::fill_n(h, history, Real(0));  // apart: forget (most hold nothing: a read, not a write)
       }
     }
     if (queued > Batch::capacity - Batch::chunk) {

@@ -30,6 +30,7 @@
 // history: each thread sweeps its particles' full lists, clears the history of entries out of reach,
 // and queues the others.
 #pragma once
+#include <engine/history_values.hpp>
 #include <engine/minimum_image.hpp>
 #include <engine/team.hpp>
 #include <engine/thread_team.hpp>
@@ -38,10 +39,8 @@
 #include <spreadmap/simd.hpp>
 
 #include <algorithm>
-#include <bit>
 #include <chrono>
 #include <cstdint>
-#include <type_traits>
 
 namespace spreadmap::engine {
 
@@ -266,15 +265,6 @@ void add_waiting_records(const Particles<Real> &p, const ListView<Real> &list, c
     }
     at += length;
   }
-}
-
-// Whether any of the n values is other than zero (of either sign): one test of their bits, no branch
-// per value.
-template <class Real> bool any_value(const Real *h, unsigned n) {
-  using Bits = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
-  Bits bits = 0;
-  for (unsigned c = 0; c < n; ++c) bits |= std::bit_cast<Bits>(h[c]);
-  return Bits(bits << 1) != 0;  // the sign bits shifted out: -0 is zero
 }
 
 // The pairs of entries `apart[0 .. n)` (their entries (i, j)) have left the law's reach: a pair whose

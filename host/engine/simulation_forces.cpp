@@ -1,6 +1,7 @@
 // Simulation's forces: the pair law over the list, the plane walls and the geometries (spreaders).
 #include <engine/cell_grid.hpp>
 #include <engine/contact_loops.hpp>
+#include <engine/history_values.hpp>
 #include <engine/errors.hpp>
 #include <engine/simulation.hpp>
 #include <engine/neighbour_listing.hpp>
@@ -73,8 +74,7 @@ template <class Real> void Simulation<Real>::plane_contacts(PlaneSlot<Real> &pla
     for (std::size_t i = lo; i < hi; ++i) {
       const Real overlap = plane_overlap(point, normal, p.x[i], p.y[i], p.z[i], p.r[i]);
       s.overlap[i] = overlap > floor ? overlap : floor;
-      bool held = false;
-      for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
+      const bool held = any_value(s.hist.data() + i * history, history);
       // a sleeping particle on a wall at rest stays as it is: no need to evaluate it
       if ((overlap > floor || held) && (moving || p.mobile[i] != 0)) mine.push_back(static_cast<std::uint32_t>(i));
     }
@@ -114,11 +114,8 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> 
                             floor);
     });
     // apart: the law still runs for a particle that holds history from this plane, to clear it
-    for (std::size_t i = lo; i < hi && history > 0; ++i) {
-      bool held = false;
-      for (unsigned h = 0; h < history; ++h) held = held || s.hist[i * history + h] != 0;
-      mine += s.overlap[i] > floor || !held ? 0u : 1u;
-    }
+    for (std::size_t i = lo; i < hi && history > 0; ++i)
+      mine += s.overlap[i] > floor || !any_value(s.hist.data() + i * history, history) ? 0u : 1u;
 #pragma omp atomic
     touching += mine;
   });
