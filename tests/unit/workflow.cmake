@@ -12,7 +12,8 @@ spreadmap_older_abi_plugin(fixture_metrics_abi_10_1 KIND metrics NAME layer MINO
 add_dependencies(test_unit_workflow fixture_metrics_abi_10_1 plugin_metrics_layer plugin_surrogate_gp plugin_surrogate_bpnn)
 target_compile_definitions(test_unit_workflow PRIVATE SPREADMAP_FIXTURE_DIR="${SPREADMAP_FIXTURE_DIR}")
 spreadmap_test(unit scene_model SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_scene_model_test.cpp
-  ${CMAKE_CURRENT_LIST_DIR}/workflow_spreader_span_test.cpp LIBS spreadmap_workflow)
+  ${CMAKE_CURRENT_LIST_DIR}/workflow_spreader_span_test.cpp ${CMAKE_CURRENT_LIST_DIR}/workflow_settle_rule_test.cpp
+  LIBS spreadmap_workflow)
 spreadmap_test(unit powder SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_powder_test.cpp LIBS spreadmap_workflow)
 add_dependencies(test_unit_powder plugin_contact_hooke_slider plugin_contact_hertz_mindlin plugin_spreader_roller)
 # scene.substrate.roughness: the key, its refusals, and the case set-up's fixed spheres on the plate.

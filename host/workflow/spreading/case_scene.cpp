@@ -65,7 +65,7 @@ double rest_shift(const Scene &scene) { return -(scene.powder.settle_time + 1.0)
 double heap_clearance(const Scene &scene) { return 0.05 * size_distribution(scene.powder).upper(); }
 
 SettleRule powder_settle_rule(const Powder &powder) {
-  return {0.3 * powder.settle_time, powder.settle_time, powder.settle_speed};
+  return {0.3 * powder.settle_time, powder.settle_time, powder.settle_speed, powder.settle_fraction};
 }
 
 template <class Real>
@@ -81,10 +81,7 @@ engine::ParticleSet settle_scene(const scene::LoadedScene &settling, PluginRegis
         if (progress) progress(s.time() / rule.max_time);
         if (s.time() < rule.min_time) return true;
         const auto &a = s.arrays();
-        Real vmax2 = 0;
-        for (std::size_t i = 0; i < a.size(); ++i)
-          vmax2 = std::max(vmax2, a.vx[i] * a.vx[i] + a.vy[i] * a.vy[i] + a.vz[i] * a.vz[i]);
-        return std::sqrt(double(vmax2)) > rule.speed;
+        return still_settling(rule, a.vx, a.vy, a.vz);
       },
       200);
   if (stop_requested())

@@ -11,6 +11,7 @@
 #include "engine/particle_set.hpp"
 #include "workflow/scene/scene_build.hpp"
 #include "workflow/spreading/scene_model.hpp"
+#include "workflow/spreading/settle_rule.hpp"
 
 namespace spreadmap {
 
@@ -30,14 +31,8 @@ double rest_shift(const Scene &scene);
 // No sphere within a twentieth of the largest diameter of the spreader at rest.
 double heap_clearance(const Scene &scene);
 
-// How long a settling run lasts: at least min_time, at most max_time, ending once the fastest sphere
-// is slower than `speed`.
-struct SettleRule {
-  double min_time = 0, max_time = 0;  // [s]
-  double speed = 0;                   // [m/s]
-};
-
-// The powder's own rule: at least 0.3 x settle_time, at most settle_time, until settle_speed.
+// The powder's own rule: at least 0.3 x settle_time, at most settle_time, until settle_fraction of its
+// spheres are slower than settle_speed.
 SettleRule powder_settle_rule(const Powder &powder);
 
 // Runs a settling scene by `rule`; `label` names the case and `what` the powder in the log;

@@ -73,7 +73,8 @@ template <class Real>
 ParticleSet after_strokes(const Scene &scene, PluginRegistry &reg, const std::string &label,
                           const std::filesystem::path &scene_file, const ParticleSet &bed) {
   const double strokes = stroke_time(scene);
-  const SettleRule rule{strokes, strokes + scene.powder.settle_time, scene.powder.settle_speed};
+  const SettleRule rule{strokes, strokes + scene.powder.settle_time, scene.powder.settle_speed,
+                        scene.powder.settle_fraction};
   auto settling = case_scene(scene, scene_file);
   settling.particles.set = bed;
   settling.scene.walls = machine_walls(scene, true);

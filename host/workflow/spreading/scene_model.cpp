@@ -57,6 +57,7 @@ void fields(P &p, F &&f) {
   f("heap_top", p.heap_top);
   f("settle_time", p.settle_time);
   f("settle_speed", p.settle_speed);
+  f("settle_fraction", p.settle_fraction);
   f("coarse_grain", p.coarse_grain);
 }
 
@@ -202,6 +203,8 @@ json to_json(const Scene &s) {
   json out = written(s);
   out["domain"] = written(s.domain);
   out["powder"] = written(s.powder);
+  // absent at its default (every sphere at rest): hashes and scene files written before it unchanged
+  if (s.powder.settle_fraction == 1) out["powder"].erase("settle_fraction");
   out["time"] = written(s.time);
   out["contact"] = {{"use", s.contact.use}, {"params", s.contact.params}};
   out["substrate"] = {{"law", s.substrate.law}};
@@ -213,7 +216,10 @@ json to_json(const Scene &s) {
   return out;
 }
 
-Scene scene_from_json(const json &in, const std::string &source) {
+Scene scene_from_json(const json &in_file, const std::string &source) {
+  json in = in_file;
+  if (in.contains("powder") && in["powder"].is_object() && !in["powder"].contains("settle_fraction"))
+    in["powder"]["settle_fraction"] = 1.0;  // absent: its default (to_json leaves it out)
   Scene s;
   JsonReader top(in, source, "scene");
   fields(s, top);

@@ -32,6 +32,7 @@ struct Powder {
   std::int64_t seed = 0;
   double heap_from = 0, heap_to = 0, heap_top = 0;  // m
   double settle_time = 0, settle_speed = 0;         // s, m/s
+  double settle_fraction = 1;                       // of the spheres slower than settle_speed to end settling
   double coarse_grain = 1;
 };
 

@@ -59,6 +59,9 @@ constexpr sm_param_v1 powder_params[] = {
     sm::number("heap_top", "m", 0, 10, 0, "insertion height limit; 0 = the domain height minus one diameter"),
     sm::number("settle_time", "s", 0, 100, 0.1, "settling time under gravity before the spreader moves"),
     sm::number("settle_speed", "m/s", 0, 10, 1e-3, "settling stops early once the fastest sphere is slower"),
+    sm::number("settle_fraction", "-", 0.5, 1, 1,
+               "settling stops early once this fraction of the spheres is slower than settle_speed (1: all; "
+               "0.99 lets a few rattlers on soft, bouncy contacts bounce on)"),
     sm::number("coarse_grain", "-", 1, 10, 1,
                "coarse graining k: spheres k x larger, k^3 fewer, contact lengths (overlap_max) x k"),
 };

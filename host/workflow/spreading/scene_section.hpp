@@ -7,7 +7,8 @@
 //   domain   {length, width, height, periodic_x, periodic_y}
 //   powder   {diameter, density, count, volume, distribution, basis, d10, d50, d90, sigma,
 //             standard_deviation, d_min, d_max, table (SI rows), seed,
-//             heap_from, heap_to, heap_top, settle_time, settle_speed}
+//             heap_from, heap_to, heap_top, settle_time, settle_speed,
+//             settle_fraction}
 //   time     {step, safety, skin, relax, checkpoint_interval, snapshots, overlap_limit}
 //   contact  {use, params{...}}                  particle-particle law
 //   substrate{law{...}, roughness{rq, correlation_length, sphere_diameter}
