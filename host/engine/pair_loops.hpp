@@ -41,6 +41,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <type_traits>
 
 namespace spreadmap::engine {
 
@@ -200,19 +201,29 @@ template <class Real> struct PairBatch {
              PairSweep<Real> &sweep) {
     if (size == 0) return;
     const unsigned history = law.history;
-    for (int q = 0; q < size; ++q) {  // the law reads and writes the history in queue order
-      const Real *e = list.hist + std::size_t(entry[q]) * history;
-      for (unsigned c = 0; c < history; ++c) hist[q * history + c] = e[c];
-    }
-    law(p, queue(size, list, true));
-    for (int q = 0; q < size; ++q) {
-      const Real *h = hist + q * history;
-      Real *e = list.hist + std::size_t(entry[q]) * history, *m = list.hist + std::size_t(list.mirror[entry[q]]) * history;
-      for (unsigned c = 0; c < history; ++c) {
-        e[c] = h[c];
-        m[c] = -h[c];
+    // the copies, compiled for the counts the laws keep (unrolled), and for any other
+    auto by_count = [&](auto &&copy) {
+      if (history == 3) copy(std::integral_constant<unsigned, 3>{});
+      else if (history == 6) copy(std::integral_constant<unsigned, 6>{});
+      else if (history > 0) copy(history);
+    };
+    by_count([&](auto count) {  // the law reads and writes the history in queue order
+      for (int q = 0; q < size; ++q) {
+        const Real *e = list.hist + std::size_t(entry[q]) * count;
+        for (unsigned c = 0; c < count; ++c) hist[q * count + c] = e[c];
       }
-    }
+    });
+    law(p, queue(size, list, true));
+    by_count([&](auto count) {
+      for (int q = 0; q < size; ++q) {
+        const Real *h = hist + q * count;
+        Real *e = list.hist + std::size_t(entry[q]) * count, *m = list.hist + std::size_t(list.mirror[entry[q]]) * count;
+        for (unsigned c = 0; c < count; ++c) {
+          e[c] = h[c];
+          m[c] = -h[c];
+        }
+      }
+    });
     for (int q = 0; q < size; ++q) {
       const std::uint32_t pi = i[q], pj = j[q];
       // records only: the entry, looked up (rare: particles at the border of a thread's range)
