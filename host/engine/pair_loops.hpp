@@ -54,8 +54,8 @@ struct PairBalance {
   double seconds[max_threads];  // each thread's last sweep
 };
 
-// The list as the pair loops walk it: the plugin ABI's list (start, nbr, hist) and, for laws without
-// history, each entry's mirror (the entry (j, i) of (i, j)), each particle's first upper entry (j > i),
+// The list as the pair loops walk it: the plugin ABI's list (start, nbr, hist) and, for the loop that
+// evaluates each pair once (law_pairs_once), each entry's mirror (the entry (j, i) of (i, j)), each particle's first upper entry (j > i),
 // the upper entries of all particles as one flat sequence (pair u is (pair_i[u], pair_j[u]), the list's
 // entry pair_entry[u]; particle i's are [first_pair[i], first_pair[i + 1])), and the scratch: a record
 // of 6 values per entry, then 6 running sums per particle, all zero on entry to the loop and on exit.

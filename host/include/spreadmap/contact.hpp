@@ -17,8 +17,9 @@
 // and, with the cohesion part, `Cohesion cohesion` and force<Cohesive>() (see WithCohesion below). A law
 // whose cohesion reaches across a gap (cohesion.range > 0) is given pairs and wall records down to
 // overlap = -range, and must then return the attraction alone there (no repulsion, friction or history).
-// A law without history whose operator() decides per contact with selects (a ? b : c on computed
-// values) rather than branches runs on SIMD lanes when it evaluates a queue (evaluate_pairs below).
+// A law whose operator() decides per contact with selects (a ? b : c on computed values) rather than
+// branches runs on SIMD lanes when it evaluates a queue (evaluate_pairs below): a law without history,
+// and one whose history mirrors (its queue then holds a contiguous copy of the history).
 #pragma once
 #include <spreadmap/batch.hpp>
 #include <spreadmap/hd.hpp>
