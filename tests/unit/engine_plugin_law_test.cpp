@@ -149,6 +149,19 @@ TEST(PluginLaw, ALawWhoseHistoryMirrorsStepsBitForBitWithEachPairOnce) {
   EXPECT_GT(std::abs(once[9]), 1e-3) << "the spheres move: the test compares forces, not rest";
 }
 
+// hooke_slider keeps no history of its own: with the rolling spring its 3 values are the spring's,
+// which mirror, so it takes the once loop too, with the same bits as every entry.
+TEST(PluginLaw, ALawWhoseOnlyHistoryIsTheRollingSpringStepsBitForBitWithEachPairOnce) {
+  const auto law = load_contact_law(
+      "hooke_slider", {{"friction", 0.5}, {"rolling_friction", 0.1}, {"rolling_model", "epsd"}, {"restitution", 0.3}});
+  EXPECT_EQ(sm::engine::law_history(law.law()), 3u);
+  EXPECT_TRUE(sm::engine::law_pairs_once(law.law()));
+  const std::array<double, 3> slope{2, 0, -9.81};
+  const auto every = row_on_floor(law.law(), 3000, slope, false), once = row_on_floor(law.law(), 3000, slope, true);
+  EXPECT_EQ(every, once);
+  EXPECT_GT(std::abs(once[9]), 1e-3) << "the spheres move: the test compares forces, not rest";
+}
+
 // A law built for ABI 10.2 has no queue functions (10.3): this host hands it the whole list and the
 // wall's records, without the engine's schedule (the list's mirror and the threads stay the engine's),
 // and its loop over every entry gives the bits of the queues that evaluate each pair once.
