@@ -89,7 +89,10 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
 
   has_mirror_ = with_mirror;
   // Zero between calls of the pair loop, which leaves it so: growing keeps it all zero.
-  if (has_mirror_) scratch.resize(std::max(scratch.size(), 6 * (std::size_t(start[n]) + n)));
+  if (has_mirror_) {
+    scratch.resize(std::max(scratch.size(), 6 * (std::size_t(start[n]) + n)));
+    packed_.resize(4 * n + 32 / sizeof(Real));
+  }
   if (history == 0 || old_nbr_.empty()) return;
   // Carry history: the same (i, j) pair of particles in the previous list, found by old indices.
   const std::size_t old_n = old_start_.empty() ? 0 : old_start_.size() - 1;
@@ -108,6 +111,7 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
   upper.resize(n);
   // Zero between calls of the pair loop, which leaves it so: growing keeps it all zero.
   scratch.resize(std::max(scratch.size(), 6 * (entries + n)));
+  packed_.resize(4 * n + 32 / sizeof(Real));
   int missing = 0;
   parallel_for(this_thread_team(), n, [&](long long ii) {
     const auto i = static_cast<std::uint32_t>(ii);

@@ -11,6 +11,7 @@
 #include <engine/particle_arrays.hpp>
 #include <spreadmap/batch.hpp>
 
+#include <cstdint>
 #include <vector>
 
 namespace spreadmap::engine {
@@ -32,7 +33,7 @@ template <class Real> class NeighbourList {
     const bool once = has_mirror_ && !nbr.empty();
     if (!once) return {start.data(), nbr.data(), hist.data()};
     return {start.data(),  nbr.data(),    hist.data(),       mirror.data(),     scratch.data(), upper.data(),
-            pair_i.data(), pair_j.data(), first_pair.data(), pair_entry.data(), &balance_};
+            pair_i.data(), pair_j.data(), first_pair.data(), pair_entry.data(), &balance_,      packed()};
   }
   std::size_t entries() const { return nbr.size(); }
   // The particles whose pairs each of `threads` threads evaluates in the pair loop of pair_loops.hpp
@@ -62,6 +63,12 @@ template <class Real> class NeighbourList {
   // per particle).
   std::vector<std::uint32_t> mirror, upper, pair_i, pair_j, first_pair, pair_entry;
   std::vector<Real> scratch;
+  // Room for the pair loop's packed spheres (x, y, z, r: 4 values a particle), 32 bytes aligned from packed().
+  std::vector<Real> packed_;
+  Real *packed() {
+    const auto at = reinterpret_cast<std::uintptr_t>(packed_.data());
+    return reinterpret_cast<Real *>((at + 31) & ~std::uintptr_t(31));
+  }
   PairBalance balance_{};
   bool has_mirror_ = false;
   std::vector<std::uint32_t> old_start_, old_nbr_, lower_;

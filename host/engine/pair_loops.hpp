@@ -32,6 +32,7 @@
 #pragma once
 #include <engine/history_values.hpp>
 #include <engine/minimum_image.hpp>
+#include <engine/pair_filter.hpp>
 #include <engine/team.hpp>
 #include <engine/thread_team.hpp>
 #include <spreadmap/batch.hpp>
@@ -55,11 +56,11 @@ struct PairBalance {
 };
 
 // The list as the pair loops walk it: the plugin ABI's list (start, nbr, hist) and, for the loop that
-// evaluates each pair once (law_pairs_once), each entry's mirror (the entry (j, i) of (i, j)), each particle's first upper entry (j > i),
-// the upper entries of all particles as one flat sequence (pair u is (pair_i[u], pair_j[u]), the list's
-// entry pair_entry[u]; particle i's are [first_pair[i], first_pair[i + 1])), and the scratch: a record
-// of 6 values per entry, then 6 running sums per particle, all zero on entry to the loop and on exit.
-// Null where absent.
+// evaluates each pair once (law_pairs_once), each entry's mirror (the entry (j, i) of (i, j)), each particle's first
+// upper entry (j > i), the upper entries of all particles as one flat sequence (pair u is (pair_i[u], pair_j[u]), the
+// list's entry pair_entry[u]; particle i's are [first_pair[i], first_pair[i + 1])), and the scratch: a record of 6
+// values per entry, then 6 running sums per particle, all zero on entry to the loop and on exit; and room for each
+// particle's position and radius packed side by side (engine/pair_filter.hpp, 32 bytes aligned). Null where absent.
 template <class Real> struct ListView {
   const std::uint32_t *start = nullptr, *nbr = nullptr;
   Real *hist = nullptr;
@@ -68,6 +69,7 @@ template <class Real> struct ListView {
   const std::uint32_t *upper = nullptr;
   const std::uint32_t *pair_i = nullptr, *pair_j = nullptr, *first_pair = nullptr, *pair_entry = nullptr;
   PairBalance *balance = nullptr;  // null: equal shares of the entries
+  Real *packed = nullptr;
 
   bool once() const { return mirror && scratch && pair_i; }
   PairList<Real> whole() const { return {start, nbr, hist}; }
@@ -185,15 +187,18 @@ inline constexpr unsigned queued_history_max = 16;
 // A queue of pairs of one thread, handed to the law when full or at the end.
 template <class Real> struct PairBatch {
   static constexpr int capacity = 64;
-  static constexpr int chunk = 16;  // pairs filtered between checks of the room left
+  // Pairs filtered between checks of the room left: a chunk starts with at most capacity - chunk queued,
+  // so the filter's stores stay within capacity + chunk (filter_packed's four-lane stores within capacity).
+  static constexpr int chunk = 16;
+  static_assert(chunk % 4 == 0, "filter_packed takes four candidates at a time");
   std::uint32_t i[capacity + chunk], j[capacity + chunk], entry[capacity + chunk];
   Real dx[capacity + chunk], dy[capacity + chunk], dz[capacity + chunk];
-  Real fi[6 * capacity], fj[6 * capacity];  // force and torque on i, then on j, `capacity` apart
+  Real fi[6 * capacity], fj[6 * capacity];   // force and torque on i, then on j, `capacity` apart
   Real hist[queued_history_max * capacity];  // each pair once: the pairs' history, in queue order
 
   PairQueue<Real> queue(int size, const ListView<Real> &list, bool both) {
-    return {std::uint32_t(size), std::uint32_t(capacity), i, j, dx, dy, dz, entry, both ? hist : list.hist,
-            fi, both ? fj : nullptr};
+    return {std::uint32_t(size), std::uint32_t(capacity), i, j, dx, dy, dz, entry, both ? hist : list.hist, fi,
+            both ? fj : nullptr};
   }
   // Evaluates the first `size` queued pairs (each pair once), keeps the mirror entries' history, and adds
   // their contributions in queue order.
@@ -217,7 +222,8 @@ template <class Real> struct PairBatch {
     by_count([&](auto count) {
       for (int q = 0; q < size; ++q) {
         const Real *h = hist + q * count;
-        Real *e = list.hist + std::size_t(entry[q]) * count, *m = list.hist + std::size_t(list.mirror[entry[q]]) * count;
+        Real *e = list.hist + std::size_t(entry[q]) * count,
+             *m = list.hist + std::size_t(list.mirror[entry[q]]) * count;
         for (unsigned c = 0; c < count; ++c) {
           e[c] = h[c];
           m[c] = -h[c];
@@ -293,15 +299,17 @@ void forget_apart(const ListView<Real> &list, unsigned history, const std::uint3
 
 // One thread's sweep over its range, compiled once per combination of periodic axes (with or without
 // a gap the law reaches across, and history) so that the filter has no branch on them.
+// With `packed` (double, AVX2 and up: the particles' positions and radii, packed) the filter takes four candidates at a
+// time (filter_packed), the scalar filter the rest.
 template <bool PX, bool PY, bool PZ, bool Gap, bool History, class Real>
-void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list,
+void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list, const Real *packed,
                  PairSweep<Real> &shared_sweep) {
   PairSweep<Real> sweep = shared_sweep;  // a copy the stores into the queue cannot alias: kept in registers
   const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
   const Real *x = p.x, *y = p.y, *z = p.z, *r = p.r;
   const std::uint32_t *pair_i = list.pair_i, *pair_j = list.pair_j, *pair_entry = list.pair_entry;
   std::uint32_t apart[PairBatch<Real>::chunk];  // History: the entries of a chunk's pairs out of reach
-  std::uint32_t done = sweep.lo;  // the particles below this one got their sums (or wait for the barrier)
+  std::uint32_t done = sweep.lo;                // the particles below this one got their sums (or wait for the barrier)
   auto finish_up_to = [&](std::uint32_t end) {
     for (; done < end; ++done) {
       if (sweep.waits(list, done)) continue;
@@ -318,6 +326,17 @@ void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListV
     // a chunk of pairs, each written to the queue and kept (counted) only when touching: no branch
     const std::uint32_t stop = min(end, u + std::uint32_t(Batch::chunk));
     int parted = 0;
+#if SPREADMAP_SIMD_LEVELS
+    if constexpr (std::is_same_v<Real, double>)
+      if (packed) {
+        const double length[3] = {lx, ly, lz};
+        const FilterQueue to{batch.i, batch.j, batch.entry, batch.dx, batch.dy, batch.dz};
+        u = filter_packed<PX, PY, PZ, Gap, History>(packed, pair_i, pair_j, pair_entry, u, stop, length, law.range, to,
+                                                    queued, apart, parted);
+      }
+#else
+    (void)packed;
+#endif
     for (; u < stop; ++u) {
       const std::uint32_t i = pair_i[u], j = pair_j[u];
       const Real ddx = wrap_axis<PX>(x[i] - x[j], lx), ddy = wrap_axis<PY>(y[i] - y[j], ly),
@@ -359,7 +378,7 @@ void sweep_entries(const PairLaw<Real> &law, const Particles<Real> &p, const Lis
   Batch batch;
   const Real lx = p.box_hi[0] - p.box_lo[0], ly = p.box_hi[1] - p.box_lo[1], lz = p.box_hi[2] - p.box_lo[2];
   const unsigned history = law.history;
-  std::uint32_t current = hi;   // the particle whose sum is open (hi: none)
+  std::uint32_t current = hi;  // the particle whose sum is open (hi: none)
   Real sum[6] = {0, 0, 0, 0, 0, 0};
   auto close = [&] {
     if (current == hi) return;
@@ -408,13 +427,22 @@ void sweep_entries(const PairLaw<Real> &law, const Particles<Real> &p, const Lis
 
 // The pair forces of a law without history or whose history mirrors, each touching pair evaluated once
 // (list.once()).
-template <class Real> void pair_forces_once(const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list) {
+template <class Real>
+void pair_forces_once(const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list) {
   const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0, gap = law.range > 0;
   const Team *team_of_thread = this_thread_team();
+  // the spheres packed for the filter of four candidates at a time, where it runs
+  Real *packed =
+      std::is_same_v<Real, double> && filter_packed_built && simd_level() >= SimdLevel::avx2 ? list.packed : nullptr;
   int threads = 1;
   detail::WaitingSpan waiting[PairBalance::max_threads];
   run_team(team_of_thread, [&](TeamSlot team) {
     const int t = team.thread, nt = team.threads;
+    if (packed) {  // each thread its share, all of them before any sweep reads one
+      const TeamRange mine = team_share(p.n, team);
+      pack_spheres(p, std::uint32_t(mine.lo), std::uint32_t(mine.hi), packed);
+      team_barrier(team_of_thread);
+    }
     const auto began = std::chrono::steady_clock::now();
     detail::PairSweep<Real> sweep;
     detail::entry_balanced_range(list.start, p.n, t, nt, list.balance, sweep.lo, sweep.hi);
@@ -423,11 +451,11 @@ template <class Real> void pair_forces_once(const PairLaw<Real> &law, const Part
     auto sweep_with = [&]<bool PX, bool PY, bool PZ>() {
       with_simd([&] {
         if (law.history) {
-          if (gap) detail::sweep_pairs<PX, PY, PZ, true, true>(law, p, list, sweep);
-          else detail::sweep_pairs<PX, PY, PZ, false, true>(law, p, list, sweep);
+          if (gap) detail::sweep_pairs<PX, PY, PZ, true, true>(law, p, list, packed, sweep);
+          else detail::sweep_pairs<PX, PY, PZ, false, true>(law, p, list, packed, sweep);
         } else {
-          if (gap) detail::sweep_pairs<PX, PY, PZ, true, false>(law, p, list, sweep);
-          else detail::sweep_pairs<PX, PY, PZ, false, false>(law, p, list, sweep);
+          if (gap) detail::sweep_pairs<PX, PY, PZ, true, false>(law, p, list, packed, sweep);
+          else detail::sweep_pairs<PX, PY, PZ, false, false>(law, p, list, packed, sweep);
         }
       });
     };
