@@ -196,6 +196,20 @@ template <class Real> struct PairBatch {
   Real fi[6 * capacity], fj[6 * capacity];   // force and torque on i, then on j, `capacity` apart
   Real hist[queued_history_max * capacity];  // each pair once: the pairs' history, in queue order
 
+  static constexpr int lanes = 8;  // the widest vector of the law's loop (AVX-512, double)
+
+  // Moves the queued pairs [from, to) to the front of the queue; returns how many there are.
+  int keep(int from, int to) {
+    for (int q = from; q < to; ++q) {
+      i[q - from] = i[q];
+      j[q - from] = j[q];
+      entry[q - from] = entry[q];
+      dx[q - from] = dx[q];
+      dy[q - from] = dy[q];
+      dz[q - from] = dz[q];
+    }
+    return to - from;
+  }
   PairQueue<Real> queue(int size, const ListView<Real> &list, bool both) {
     return {std::uint32_t(size), std::uint32_t(capacity), i, j, dx, dy, dz, entry, both ? hist : list.hist, fi,
             both ? fj : nullptr};
@@ -358,9 +372,12 @@ void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListV
     }
     if constexpr (History) forget_apart(list, law.history, apart, parted);
     if (queued > Batch::capacity - Batch::chunk) {
-      batch.flush(queued, law, p, list, sweep);
-      queued = 0;
-      finish_up_to(u < end ? pair_i[u] : sweep.hi);  // every pair of the particles before is evaluated
+      // a whole number of the law's vectors (no scalar remainder in its loop); the rest waits in the queue
+      const int whole = queued / Batch::lanes * Batch::lanes;
+      batch.flush(whole, law, p, list, sweep);
+      queued = batch.keep(whole, queued);
+      // every pair of the particles before is evaluated
+      finish_up_to(queued > 0 ? batch.i[0] : (u < end ? pair_i[u] : sweep.hi));
     }
   }
   batch.flush(queued, law, p, list, sweep);
