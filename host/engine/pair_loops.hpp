@@ -95,6 +95,24 @@ template <class Real> void add_sum(const Particles<Real> &p, std::uint32_t i, co
   p.tz[i] += s[5];
 }
 
+// Adds the running sums (6 a particle) of particles [from, to) to their accumulators and clears them:
+// the next call starts from zero sums. Through local pointers that the stores cannot change, so that
+// the loop keeps them in registers and vectorises.
+template <class Real> void add_sums(const Particles<Real> &p, Real *sums, std::uint32_t from, std::uint32_t to) {
+  Real *__restrict fx = p.fx, *__restrict fy = p.fy, *__restrict fz = p.fz, *__restrict tx = p.tx,
+                   *__restrict ty = p.ty, *__restrict tz = p.tz, *__restrict s = sums;
+  for (std::uint32_t i = from; i < to; ++i) {
+    Real *own = s + std::size_t(i) * 6;
+    fx[i] += own[0];
+    fy[i] += own[1];
+    fz[i] += own[2];
+    tx[i] += own[3];
+    ty[i] += own[4];
+    tz[i] += own[5];
+    for (int c = 0; c < 6; ++c) own[c] = 0;
+  }
+}
+
 // The particles [lo, hi) of thread t of nt, cut where the list entries are shared as `balance` says
 // (equally without one, or when it is for another number of threads).
 inline void entry_balanced_range(const std::uint32_t *start, std::uint32_t n, int t, int nt, const PairBalance *balance,
@@ -325,12 +343,11 @@ void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListV
   std::uint32_t apart[PairBatch<Real>::chunk];  // History: the entries of a chunk's pairs out of reach
   std::uint32_t done = sweep.lo;                // the particles below this one got their sums (or wait for the barrier)
   auto finish_up_to = [&](std::uint32_t end) {
-    for (; done < end; ++done) {
-      if (sweep.waits(list, done)) continue;
-      Real *s = sweep.sums + std::size_t(done) * 6;
-      add_sum(p, done, s);
-      for (int c = 0; c < 6; ++c) s[c] = 0;  // left as found: the next call starts from zero sums
-    }
+    const std::uint32_t checked = std::max(done, std::min(end, sweep.waiting_end));  // none waits from here on
+    for (; done < checked; ++done)
+      if (!sweep.waits(list, done)) add_sums(p, sweep.sums, done, done + 1);
+    if (done < end) add_sums(p, sweep.sums, done, end);
+    done = std::max(done, end);
   };
   using Batch = PairBatch<Real>;
   Batch batch;
@@ -457,7 +474,7 @@ void pair_forces_once(const PairLaw<Real> &law, const Particles<Real> &p, const 
     const int t = team.thread, nt = team.threads;
     if (packed) {  // each thread its share, all of them before any sweep reads one
       const TeamRange mine = team_share(p.n, team);
-      pack_spheres(p, std::uint32_t(mine.lo), std::uint32_t(mine.hi), packed);
+      with_simd([&] { pack_spheres(p, std::uint32_t(mine.lo), std::uint32_t(mine.hi), packed); });
       team_barrier(team_of_thread);
     }
     const auto began = std::chrono::steady_clock::now();
