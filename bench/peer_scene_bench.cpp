@@ -320,14 +320,18 @@ int main(int argc, char **argv) {
   std::printf("%-28s %16.3e %12s %12.2f   %s\n", "LIGGGHTS 3.8, 1 process", opt.liggghts, "", 1.0,
               opt.liggghts_label.c_str());
 
-  // The issue's targets: >= 3x LIGGGHTS' serial figure on one thread, >= 1.6x from 1 to 2 threads.
+  // Issue 41's targets: >= 6x LIGGGHTS' serial figure on one thread (10x the moonshot); from 1 to 2
+  // threads >= 1.85 on a quiet machine, and >= 0.9 beside a busy process (--busy).
   for (std::size_t k = 0; k < opt.threads.size(); ++k) {
     if (opt.threads[k] == 1)
-      std::printf("target 1 thread >= 3x LIGGGHTS serial: %.2fx -> %s\n", med[k] / opt.liggghts,
-                  med[k] >= 3 * opt.liggghts ? "met" : "NOT met");
-    if (opt.threads[k] == 2 && opt.threads[0] == 1)
-      std::printf("target speed-up 1 -> 2 threads >= 1.6: %.2f -> %s\n", med[k] / med[0],
-                  med[k] >= 1.6 * med[0] ? "met" : "NOT met");
+      std::printf("target 1 thread >= 6x LIGGGHTS serial: %.2fx -> %s\n", med[k] / opt.liggghts,
+                  med[k] >= 6 * opt.liggghts ? "met" : "NOT met");
+    if (opt.threads[k] == 2 && opt.threads[0] == 1) {
+      const double wanted = opt.busy ? 0.9 : 1.85;
+      std::printf("target 2 threads / 1 thread >= %.2f (%s): %.2f -> %s\n", wanted,
+                  opt.busy ? "beside a busy process" : "quiet machine", med[k] / med[0],
+                  med[k] >= wanted * med[0] ? "met" : "NOT met");
+    }
   }
   return identical ? 0 : 1;
 }
