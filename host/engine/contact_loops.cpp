@@ -11,7 +11,6 @@
 namespace spreadmap::engine {
 
 namespace {
-constexpr std::uint32_t queues_minor = 3;  // the ABI minor from which laws and geometries take queues and ranges
 
 template <class Real> PairLaw<Real> pair_law(const ContactLaw &law) {
   if constexpr (std::is_same_v<Real, double>)
@@ -75,26 +74,36 @@ void wall_range(const ContactLaw &law, const Particles<Real> &p, const WallConta
 }
 }  // namespace
 
-template <class Real> void pair_forces(const ContactLaw &law, const Particles<Real> &p, const ListView<Real> &list) {
-  if (law.abi_minor < queues_minor) {
+template <class Real>
+void pair_forces(const ContactLaw &law, const Particles<Real> &p, const ListView<Real> &list, PairSideJob side) {
+  if (!takes_ranges(law)) {
     const PairList<Real> whole = list.whole();
     if constexpr (std::is_same_v<Real, double>) law.ops->pairs_f64(law.self, &p, &whole);
     else law.ops->pairs_f32(law.self, &p, &whole);
+  } else if (list.once() && law_pairs_once(law)) {
+    pair_forces_once(pair_law<Real>(law), p, list, side);
     return;
+  } else {
+    pair_forces_every_entry(pair_law<Real>(law), p, list);
   }
-  const PairLaw<Real> queue_law = pair_law<Real>(law);
-  if (list.once() && law_pairs_once(law)) pair_forces_once(queue_law, p, list);
-  else pair_forces_every_entry(queue_law, p, list);
+  if (side.run) side.run(side.arg, 0, p.n);
 }
 
+namespace {
+// The floor above which a wall record interacts with `law`: its range, or the wall's gap when smaller.
+template <class Real> Real wall_floor(const ContactLaw &law, const WallContacts<Real> &w) {
+  const Real range = Real(law_range(law));
+  return range > 0 ? Real(0) - std::min(w.gap, range) : Real(0);
+}
+}  // namespace
+
 template <class Real> void wall_forces(const ContactLaw &law, const Particles<Real> &p, const WallContacts<Real> &w) {
-  if (law.abi_minor < queues_minor) {
+  if (!takes_ranges(law)) {
     if constexpr (std::is_same_v<Real, double>) law.ops->walls_f64(law.self, &p, &w);
     else law.ops->walls_f32(law.self, &p, &w);
     return;
   }
-  const Real range = Real(law_range(law));
-  const Real floor = range > 0 ? Real(0) - std::min(w.gap, range) : Real(0);
+  const Real floor = wall_floor(law, w);
   const unsigned history = law_history(law);
   run_team(this_thread_team(), [&](TeamSlot team) {
     const TeamRange r = team_share(w.n, team);
@@ -105,26 +114,46 @@ template <class Real> void wall_forces(const ContactLaw &law, const Particles<Re
 }
 
 template <class Real>
+void wall_forces_range(const ContactLaw &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t lo,
+                       std::uint32_t hi) {
+  const Real floor = wall_floor(law, w);
+  const unsigned history = law_history(law);
+  with_simd([&] { wall_range(law, p, w, floor, history, lo, hi); });
+}
+
+template <class Real>
+void geometry_contacts_range(const GeometryWall &geometry, const Particles<Real> &p, WallContacts<Real> &w,
+                             std::uint32_t lo, std::uint32_t hi) {
+  if constexpr (std::is_same_v<Real, double>) geometry.ops->contacts_range_f64(geometry.self, &p, &w, lo, hi);
+  else geometry.ops->contacts_range_f32(geometry.self, &p, &w, lo, hi);
+}
+
+template <class Real>
 void geometry_contacts(const GeometryWall &geometry, const Particles<Real> &p, WallContacts<Real> &w) {
-  const sm_spreader_ops_v2 *ops = geometry.ops;
-  if (geometry.abi_minor < queues_minor) {
-    if constexpr (std::is_same_v<Real, double>) ops->contacts_f64(geometry.self, &p, &w);
-    else ops->contacts_f32(geometry.self, &p, &w);
+  if (!takes_ranges(geometry)) {
+    if constexpr (std::is_same_v<Real, double>) geometry.ops->contacts_f64(geometry.self, &p, &w);
+    else geometry.ops->contacts_f32(geometry.self, &p, &w);
     return;
   }
   run_team(this_thread_team(), [&](TeamSlot team) {
     const TeamRange r = team_share(p.n, team);
-    const auto lo = static_cast<std::uint32_t>(r.lo), hi = static_cast<std::uint32_t>(r.hi);
-    if constexpr (std::is_same_v<Real, double>) ops->contacts_range_f64(geometry.self, &p, &w, lo, hi);
-    else ops->contacts_range_f32(geometry.self, &p, &w, lo, hi);
+    geometry_contacts_range(geometry, p, w, static_cast<std::uint32_t>(r.lo), static_cast<std::uint32_t>(r.hi));
   });
 }
 
-template void pair_forces(const ContactLaw &, const Particles<double> &, const ListView<double> &);
-template void pair_forces(const ContactLaw &, const Particles<float> &, const ListView<float> &);
+template void pair_forces(const ContactLaw &, const Particles<double> &, const ListView<double> &, PairSideJob);
+template void pair_forces(const ContactLaw &, const Particles<float> &, const ListView<float> &, PairSideJob);
 template void wall_forces(const ContactLaw &, const Particles<double> &, const WallContacts<double> &);
 template void wall_forces(const ContactLaw &, const Particles<float> &, const WallContacts<float> &);
 template void geometry_contacts(const GeometryWall &, const Particles<double> &, WallContacts<double> &);
 template void geometry_contacts(const GeometryWall &, const Particles<float> &, WallContacts<float> &);
+template void wall_forces_range(const ContactLaw &, const Particles<double> &, const WallContacts<double> &,
+                                std::uint32_t, std::uint32_t);
+template void wall_forces_range(const ContactLaw &, const Particles<float> &, const WallContacts<float> &,
+                                std::uint32_t, std::uint32_t);
+template void geometry_contacts_range(const GeometryWall &, const Particles<double> &, WallContacts<double> &,
+                                      std::uint32_t, std::uint32_t);
+template void geometry_contacts_range(const GeometryWall &, const Particles<float> &, WallContacts<float> &,
+                                      std::uint32_t, std::uint32_t);
 
 }  // namespace spreadmap::engine

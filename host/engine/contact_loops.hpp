@@ -20,14 +20,29 @@ inline bool law_pairs_once(const ContactLaw &law) {
          history <= detail::queued_history_max;
 }
 
-// Adds the forces of every pair of `list` within the law's reach to p's accumulators.
-template <class Real> void pair_forces(const ContactLaw &law, const Particles<Real> &p, const ListView<Real> &list);
+// Adds the forces of every pair of `list` within the law's reach to p's accumulators; runs `side` once,
+// beside them where the loop can (pair_forces_once), else after them.
+template <class Real>
+void pair_forces(const ContactLaw &law, const Particles<Real> &p, const ListView<Real> &list, PairSideJob side = {});
 
 // Adds the forces of one wall's records w (interacting: overlap above -w.gap and the law's range, or
 // touching) to p's accumulators; a record apart clears its history.
 template <class Real> void wall_forces(const ContactLaw &law, const Particles<Real> &p, const WallContacts<Real> &w);
 
 // Fills the wall records w of every particle of p for a geometry at time p.t.
-template <class Real> void geometry_contacts(const GeometryWall &geometry, const Particles<Real> &p, WallContacts<Real> &w);
+template <class Real>
+void geometry_contacts(const GeometryWall &geometry, const Particles<Real> &p, WallContacts<Real> &w);
+
+// For a caller that shares the records between its threads itself (one run for a geometry's contacts,
+// its law and the copies around them): whether the plugins take ranges (ABI 10.3; an older one takes
+// only its whole-list call), and the two calls above over records [lo, hi) alone, on the calling thread.
+inline bool takes_ranges(const ContactLaw &law) { return law.abi_minor >= 3; }
+inline bool takes_ranges(const GeometryWall &geometry) { return geometry.abi_minor >= 3; }
+template <class Real>
+void wall_forces_range(const ContactLaw &law, const Particles<Real> &p, const WallContacts<Real> &w, std::uint32_t lo,
+                       std::uint32_t hi);
+template <class Real>
+void geometry_contacts_range(const GeometryWall &geometry, const Particles<Real> &p, WallContacts<Real> &w,
+                             std::uint32_t lo, std::uint32_t hi);
 
 }  // namespace spreadmap::engine

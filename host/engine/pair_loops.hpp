@@ -84,6 +84,13 @@ template <class Real> struct PairLaw {
   void operator()(const Particles<Real> &p, const PairQueue<Real> &q) const { queue(self, &p, &q); }
 };
 
+// Other work of the step that may run while the pairs are evaluated (it reads the particles' state and
+// writes only its own copies), for particles [lo, hi); none when run is null.
+struct PairSideJob {
+  void (*run)(void *arg, std::uint32_t lo, std::uint32_t hi) = nullptr;
+  void *arg = nullptr;
+};
+
 namespace detail {
 // Adds a sum of contributions (force x, y, z, torque x, y, z) to particle i's accumulators.
 template <class Real> void add_sum(const Particles<Real> &p, std::uint32_t i, const Real *s) {
@@ -460,9 +467,11 @@ void sweep_entries(const PairLaw<Real> &law, const Particles<Real> &p, const Lis
 }  // namespace detail
 
 // The pair forces of a law without history or whose history mirrors, each touching pair evaluated once
-// (list.once()).
+// (list.once()). Each thread runs `side` for its particles after its sweep, timed with it: the
+// balance of the sweeps then takes it in, and the particles' data stays in the core that owns them.
 template <class Real>
-void pair_forces_once(const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list) {
+void pair_forces_once(const PairLaw<Real> &law, const Particles<Real> &p, const ListView<Real> &list,
+                      PairSideJob side = {}) {
   const bool px = p.periodic[0] != 0, py = p.periodic[1] != 0, pz = p.periodic[2] != 0, gap = law.range > 0;
   const Team *team_of_thread = this_thread_team();
   // the spheres packed for the filter of four candidates at a time, where it runs
@@ -505,6 +514,7 @@ void pair_forces_once(const PairLaw<Real> &law, const Particles<Real> &p, const 
         pz ? sweep_with.template operator()<false, false, true>()
            : sweep_with.template operator()<false, false, false>();
     }
+    if (side.run) side.run(side.arg, sweep.lo, sweep.hi);
     const auto swept = std::chrono::steady_clock::now();
     const bool shared = nt <= PairBalance::max_threads;
     if (shared) waiting[t] = {sweep.lo, std::max(sweep.lo, sweep.waiting_end)};

@@ -21,6 +21,16 @@ template <class Real> class ParticleSubset {
   // clears the force accumulators and wall records of the copy.
   void gather(const ParticleArrays<Real> &p, const std::vector<std::uint32_t> &index, const std::vector<Real> &hist,
               unsigned history) {
+    size_for(index, history);
+    const std::size_t n = index.size();
+    parallel_for(
+        this_thread_team(), n, [&](long long q) { gather(p, hist, std::size_t(q), std::size_t(q) + 1); },
+        n > parallel_from);
+  }
+
+  // The same in parts, for a caller that shares the copy between its threads: size_for once, then
+  // gather each part [lo, hi) of the copy.
+  void size_for(const std::vector<std::uint32_t> &index, unsigned history) {
     index_ = &index;
     const std::size_t n = index.size();
     for (auto *c : {&x,  &y,  &z,  &vx, &vy, &vz,      &wx, &wy, &wz, &r,   &m,   &fx,
@@ -28,33 +38,32 @@ template <class Real> class ParticleSubset {
       c->resize(n);
     history_ = history;
     wall_hist.resize(n * history);
-    const std::uint32_t *idx = index.data();
-    parallel_for(
-        this_thread_team(), n,
-        [&](long long qq) {
-          const auto q = static_cast<std::size_t>(qq);
-          const std::uint32_t i = idx[q];
-          x[q] = p.x[i];
-          y[q] = p.y[i];
-          z[q] = p.z[i];
-          vx[q] = p.vx[i];
-          vy[q] = p.vy[i];
-          vz[q] = p.vz[i];
-          wx[q] = p.wx[i];
-          wy[q] = p.wy[i];
-          wz[q] = p.wz[i];
-          r[q] = p.r[i];
-          m[q] = p.m[i];
-          fx[q] = 0;
-          fy[q] = 0;
-          fz[q] = 0;
-          tx[q] = 0;
-          ty[q] = 0;
-          tz[q] = 0;
-          overlap[q] = 0;
-          for (unsigned h = 0; h < history; ++h) wall_hist[q * history + h] = hist[std::size_t(i) * history + h];
-        },
-        n > parallel_from);
+  }
+  void gather(const ParticleArrays<Real> &p, const std::vector<Real> &hist, std::size_t lo, std::size_t hi) {
+    const std::uint32_t *idx = index_->data();
+    const unsigned history = history_;
+    for (std::size_t q = lo; q < hi; ++q) {
+      const std::uint32_t i = idx[q];
+      x[q] = p.x[i];
+      y[q] = p.y[i];
+      z[q] = p.z[i];
+      vx[q] = p.vx[i];
+      vy[q] = p.vy[i];
+      vz[q] = p.vz[i];
+      wx[q] = p.wx[i];
+      wy[q] = p.wy[i];
+      wz[q] = p.wz[i];
+      r[q] = p.r[i];
+      m[q] = p.m[i];
+      fx[q] = 0;
+      fy[q] = 0;
+      fz[q] = 0;
+      tx[q] = 0;
+      ty[q] = 0;
+      tz[q] = 0;
+      overlap[q] = 0;
+      for (unsigned h = 0; h < history; ++h) wall_hist[q * history + h] = hist[std::size_t(i) * history + h];
+    }
   }
 
   // The wall records of a plane: its overlap with each particle, one normal and one velocity.
@@ -106,25 +115,29 @@ template <class Real> class ParticleSubset {
             wall_hist.data()};
   }
 
-  // Adds the copy's forces and torques to the particles, and writes back their wall overlap and history.
+  // Adds the copy's forces and torques to the particles, and writes back their wall overlap and history
+  // (of the whole copy, or of its part [lo, hi)).
   void scatter(ParticleArrays<Real> &p, std::vector<Real> &dense_overlap, std::vector<Real> &hist) const {
-    const std::uint32_t *idx = index_->data();
-    const unsigned history = history_;
     parallel_for(
         this_thread_team(), x.size(),
-        [&](long long qq) {
-          const auto q = static_cast<std::size_t>(qq);
-          const std::uint32_t i = idx[q];
-          p.fx[i] += fx[q];
-          p.fy[i] += fy[q];
-          p.fz[i] += fz[q];
-          p.tx[i] += tx[q];
-          p.ty[i] += ty[q];
-          p.tz[i] += tz[q];
-          dense_overlap[i] = overlap[q];
-          for (unsigned h = 0; h < history; ++h) hist[std::size_t(i) * history + h] = wall_hist[q * history + h];
-        },
+        [&](long long q) { scatter(p, dense_overlap, hist, std::size_t(q), std::size_t(q) + 1); },
         x.size() > parallel_from);
+  }
+  void scatter(ParticleArrays<Real> &p, std::vector<Real> &dense_overlap, std::vector<Real> &hist, std::size_t lo,
+               std::size_t hi) const {
+    const std::uint32_t *idx = index_->data();
+    const unsigned history = history_;
+    for (std::size_t q = lo; q < hi; ++q) {
+      const std::uint32_t i = idx[q];
+      p.fx[i] += fx[q];
+      p.fy[i] += fy[q];
+      p.fz[i] += fz[q];
+      p.tx[i] += tx[q];
+      p.ty[i] += ty[q];
+      p.tz[i] += tz[q];
+      dense_overlap[i] = overlap[q];
+      for (unsigned h = 0; h < history; ++h) hist[std::size_t(i) * history + h] = wall_hist[q * history + h];
+    }
   }
 
  private:

@@ -149,6 +149,11 @@ template <class Real = double> class Simulation {
   void share_like_pairs();  // the step's loops split the particles as the pair loop does
   void find_near_geometry(GeometrySlot<Real> &geometry);
   void geometry_forces(GeometrySlot<Real> &geometry, const Particles<Real> &view);
+  bool geometry_copied(const GeometrySlot<Real> &geometry) const;
+  void copy_geometry_forces(GeometrySlot<Real> &geometry, const Particles<Real> &view, std::uint32_t lo,
+                            std::uint32_t hi);
+  void add_geometry_forces(GeometrySlot<Real> &geometry);
+  void wake_touched(const GeometrySlot<Real> &geometry);
   void compute_forces(StepProfile *profile = nullptr);  // profile: its parts timed into it
   void plane_contacts(PlaneSlot<Real> &plane);
   void dense_plane_forces(PlaneSlot<Real> &plane, const Particles<Real> &view);
@@ -193,8 +198,8 @@ template <class Real = double> class Simulation {
   std::vector<Real> scratch_real_;
   std::vector<Real> inflated_radius_;                     // radii + margin for the geometry search
   std::vector<std::vector<std::uint32_t>> thread_index_;  // per-thread index lists
-  ParticleSubset<Real> subset_;
-  TeamTuner tuner_;  // how many threads the steps use (Settings::tune_threads)
+  ParticleSubset<Real> subset_;                           // a plane's particles near it
+  TeamTuner tuner_;                                       // how many threads the steps use (Settings::tune_threads)
 };
 
 extern template class Simulation<double>;

@@ -105,6 +105,9 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> 
   const unsigned history = s.history;
   const double range = law_range(plane.wall.law);
   const Real floor = Real(0) - Real(range);
+  WallContacts<Real> w = s.view(n);
+  w.gap = Real(range);
+  const bool in_run = takes_ranges(plane.wall.law);  // the law on each thread's part, in the same run
   std::uint32_t touching = 0;
   run_team(this_thread_team(), [&](TeamSlot team) {
     const auto [lo, hi] = team_share(n, team);
@@ -116,14 +119,13 @@ template <class Real> void Simulation<Real>::dense_plane_forces(PlaneSlot<Real> 
     // apart: the law still runs for a particle that holds history from this plane, to clear it
     for (std::size_t i = lo; i < hi && history > 0; ++i)
       mine += s.overlap[i] > floor || !any_value(s.hist.data() + i * history, history) ? 0u : 1u;
+    // a part where nothing touches or holds history: the law would find nothing to do in it
+    if (in_run && mine > 0) wall_forces_range(plane.wall.law, view, w, std::uint32_t(lo), std::uint32_t(hi));
 #pragma omp atomic
     touching += mine;
   });
   s.touched = touching > 0;
-  if (!s.touched) return;
-  WallContacts<Real> w = s.view(n);
-  w.gap = Real(range);
-  wall_forces(plane.wall.law, view, w);
+  if (s.touched && !in_run) wall_forces(plane.wall.law, view, w);
 }
 
 // One wall's law over a subset of particles gathered beforehand, then the forces added back. A small
@@ -159,8 +161,30 @@ template <class Real> void Simulation<Real>::compute_forces(StepProfile *prof) {
   state_.forces_valid = true;
   if (n == 0) return;
   const Particles<Real> v = view();
-  pair_forces(state_.pair_law, v, state_.list.view());
-  lap(&StepProfile::pairs);  // with the zeroing of the forces above
+  for (auto &ge : state_.geometries) {
+    // searched again when the geometry may have moved by a skin (the search does not change results)
+    if (!ge.near_valid || ge.speed * (state_.time - ge.near_since) > state_.skin) find_near_geometry(ge);
+  }
+  // The geometries' copies are evaluated in the pair loop, each thread for the particles whose pairs it
+  // sweeps: a spreader touches a few hundred particles, too few to share in a run of their own.
+  bool copies = false;
+  for (auto &ge : state_.geometries)
+    if (geometry_copied(ge)) {
+      ge.copy.size_for(ge.near, ge.slot.history);
+      copies = true;
+    }
+  struct Copying {
+    Simulation *sim;
+    const Particles<Real> *v;
+  } copying{this, &v};
+  const PairSideJob side{[](void *arg, std::uint32_t lo, std::uint32_t hi) {
+                           auto *c = static_cast<Copying *>(arg);
+                           for (auto &ge : c->sim->state_.geometries)
+                             if (c->sim->geometry_copied(ge)) c->sim->copy_geometry_forces(ge, *c->v, lo, hi);
+                         },
+                         &copying};
+  pair_forces(state_.pair_law, v, state_.list.view(), copies ? side : PairSideJob{});
+  lap(&StepProfile::pairs);  // with the zeroing of the forces above and the geometries' copies
 
   for (auto &pl : state_.planes) {
     if (!pl.wall.active) continue;
@@ -186,9 +210,8 @@ template <class Real> void Simulation<Real>::compute_forces(StepProfile *prof) {
   }
   lap(&StepProfile::planes);
   for (auto &ge : state_.geometries) {
-    // searched again when the geometry may have moved by a skin (the search does not change results)
-    if (!ge.near_valid || ge.speed * (state_.time - ge.near_since) > state_.skin) find_near_geometry(ge);
-    geometry_forces(ge, v);
+    if (!geometry_copied(ge)) geometry_forces(ge, v);
+    else if (!ge.near.empty()) add_geometry_forces(ge);
     ge.slot.touched = true;
   }
   lap(&StepProfile::geometries);
@@ -234,7 +257,54 @@ template <class Real> void Simulation<Real>::find_near_geometry(GeometrySlot<Rea
   ge.speed = speed;
 }
 
-// Contacts and forces of one geometry, over its near particles only when they are known.
+// Whether a geometry's forces are evaluated on a copy of its near particles, each thread for its own
+// particles inside the pair loop's run (copy_geometry_forces), and added after the planes'
+// (add_geometry_forces).
+template <class Real> bool Simulation<Real>::geometry_copied(const GeometrySlot<Real> &ge) const {
+  return ge.near_valid && takes_ranges(ge.geometry) && takes_ranges(ge.geometry.law);
+}
+
+// The contacts and forces of a geometry's near particles among [lo, hi), into its copy (sized
+// beforehand): reads the particles' state and the geometry's own records, writes only its part of the
+// copy, so that it may run while the pair loop runs, each thread for its own particles.
+template <class Real>
+void Simulation<Real>::copy_geometry_forces(GeometrySlot<Real> &ge, const Particles<Real> &v, std::uint32_t lo,
+                                            std::uint32_t hi) {
+  const auto first = static_cast<std::uint32_t>(std::lower_bound(ge.near.begin(), ge.near.end(), lo) - ge.near.begin());
+  const auto last = static_cast<std::uint32_t>(std::lower_bound(ge.near.begin(), ge.near.end(), hi) - ge.near.begin());
+  if (first == last) return;
+  auto &c = ge.copy;
+  c.gather(state_.particles, ge.slot.hist, first, last);
+  const Particles<Real> cv = c.particles(v);
+  Particles<Real> at = cv;  // the geometry's own clock
+  at.t = Real(state_.time + ge.geometry.time_shift);
+  WallContacts<Real> cw = c.walls();
+  geometry_contacts_range(ge.geometry, at, cw, first, last);
+  wall_forces_range(ge.geometry.law, cv, cw, first, last);
+}
+
+// The copy's forces added to the particles, its records written back, in the order of the step's sums
+// (pairs, planes, geometries).
+template <class Real> void Simulation<Real>::add_geometry_forces(GeometrySlot<Real> &ge) {
+  ge.copy.scatter(state_.particles, ge.slot.overlap, ge.slot.hist);
+  wake_touched(ge);
+}
+
+// A moving surface wakes what it touches.
+template <class Real> void Simulation<Real>::wake_touched(const GeometrySlot<Real> &ge) {
+  if (asleep_ == 0) return;
+  auto &p = state_.particles;
+  if (!ge.near_valid) {
+    for (std::uint32_t i = 0; i < p.size(); ++i)
+      if (ge.slot.overlap[i] > 0) wake(i);
+    return;
+  }
+  for (std::uint32_t i : ge.near)
+    if (ge.slot.overlap[i] > 0) wake(i);
+}
+
+// Contacts and forces of one geometry whose plugins take whole lists only, or whose near particles are
+// not known (every particle evaluated).
 template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot<Real> &ge, const Particles<Real> &v) {
   auto &p = state_.particles;
   const ContactLaw &law = ge.geometry.law;
@@ -247,25 +317,18 @@ template <class Real> void Simulation<Real>::geometry_forces(GeometrySlot<Real> 
   if (!ge.near_valid) {
     WallContacts<Real> w = ge.slot.view(p.size());
     evaluate(v, w);
-    if (asleep_ > 0)
-      for (std::uint32_t i = 0; i < p.size(); ++i)
-        if (ge.slot.overlap[i] > 0) wake(i);
-    return;
+  } else if (!ge.near.empty()) {
+    ge.copy.gather(p, ge.near, ge.slot.hist, ge.slot.history);
+    const Particles<Real> cv = ge.copy.particles(v);
+    WallContacts<Real> cw = ge.copy.walls();
+    {
+      const TeamSizeScope serial(cw.n < subset_parallel_from ? 1 : 0);  // a team would cost more than the work
+      evaluate(cv, cw);
+    }
+    ge.copy.scatter(p, ge.slot.overlap, ge.slot.hist);
   }
-  if (ge.near.empty()) return;
-  subset_.gather(p, ge.near, ge.slot.hist, ge.slot.history);
-  const Particles<Real> sv = subset_.particles(v);
-  WallContacts<Real> sw = subset_.walls();
-  {
-    const TeamSizeScope serial(sw.n < subset_parallel_from ? 1 : 0);  // a team would cost more than the work
-    evaluate(sv, sw);
-  }
-  subset_.scatter(p, ge.slot.overlap, ge.slot.hist);
-  if (asleep_ > 0)  // a moving surface wakes what it touches
-    for (std::uint32_t i : ge.near)
-      if (ge.slot.overlap[i] > 0) wake(i);
+  wake_touched(ge);
 }
-
 
 template class Simulation<double>;
 template class Simulation<float>;

@@ -2,6 +2,7 @@
 // surface velocity), the wall law's history, and, per kind of wall, what the CPU step reuses between
 // steps. Columns hold one value (history: `history` values) per particle, in the particles' order.
 #pragma once
+#include <engine/particle_subset.hpp>
 #include <engine/walls.hpp>
 
 #include <array>
@@ -48,6 +49,7 @@ template <class Real> struct GeometrySlot {
   GeometryWall geometry;
   WallSlot<Real> slot;
   std::vector<std::uint32_t> near;
+  ParticleSubset<Real> copy;  // the near particles' state, and the geometry's forces on them
   bool near_valid = false;
   double near_since = 0;  // time of the search [s]
   double speed = 0;       // bound on the speed of any surface point [m/s]

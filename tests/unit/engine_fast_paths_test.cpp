@@ -242,15 +242,25 @@ TEST(EngineGeometry, NearParticlesOnlyGiveTheSameBitsAsEveryParticle) {
   const TestBall ball{{0.006, 0.006, 0.03}, {0.02, 0.01, -0.3}, 0.003};
   sm::sm_spreader_ops_v2 unbounded = sm::detail::GeometryOps<TestBall>::table;
   unbounded.max_surface_speed = nullptr;
-  auto run = [&](const sm::sm_spreader_ops_v2 *ops) {
-    auto sim = scene.make(quiet());
+  // The near particles' forces are evaluated inside the pair loop, each thread for the particles whose
+  // pairs it sweeps (or after the loop that evaluates every list entry), and added after the floor's.
+  auto run = [&](const sm::sm_spreader_ops_v2 *ops, int threads = 2, bool pairs_once = true) {
+    omp_set_num_threads(threads);
+    Settings settings = quiet();
+    settings.pairs_once = pairs_once;
+    auto sim = scene.make(settings);
     if (ops) sim->add_geometry({ops, &ball, bind_law(scene.wall), "ball"});
     sim->run_steps(1500);
+    omp_set_num_threads(2);
     return sim;
   };
-  const auto near = run(&sm::detail::GeometryOps<TestBall>::table), every = run(&unbounded), none = run(nullptr);
-  EXPECT_TRUE(same_state(*near, *every));
-  EXPECT_FALSE(same_state(*near, *none)) << "the ball should have pushed particles";
+  const auto *bounded = &sm::detail::GeometryOps<TestBall>::table;
+  const auto every = run(&unbounded), none = run(nullptr);
+  EXPECT_FALSE(same_state(*every, *none)) << "the ball should have pushed particles";
+  for (int threads : {1, 2, 3}) {
+    EXPECT_TRUE(same_state(*run(bounded, threads), *every)) << threads << " threads";
+    EXPECT_TRUE(same_state(*run(bounded, threads, false), *every)) << threads << " threads, every list entry";
+  }
 }
 
 namespace {
@@ -325,7 +335,8 @@ TEST(EngineSleep, BelowADepthBoundOnlyTheBuriedSpheresSleep) {
   sim.set_sleep_region(-std::numeric_limits<double>::infinity(), bound);
   sim.run_steps(2000);
   std::size_t asleep_above = 0;
-  for (std::size_t i = 0; i < sim.size(); ++i) asleep_above += sim.arrays().mobile[i] == 0 && sim.arrays().z[i] >= bound;
+  for (std::size_t i = 0; i < sim.size(); ++i)
+    asleep_above += sim.arrays().mobile[i] == 0 && sim.arrays().z[i] >= bound;
   std::printf("%zu of the %zu spheres below z = %.3g mm sleep, %zu above\n", sim.sleeping_count(), below, bound * 1e3,
               asleep_above);
   EXPECT_EQ(asleep_above, 0u) << "a sphere above the bound fell asleep";
