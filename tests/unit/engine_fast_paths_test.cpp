@@ -242,12 +242,14 @@ TEST(EngineGeometry, NearParticlesOnlyGiveTheSameBitsAsEveryParticle) {
   const TestBall ball{{0.006, 0.006, 0.03}, {0.02, 0.01, -0.3}, 0.003};
   sm::sm_spreader_ops_v2 unbounded = sm::detail::GeometryOps<TestBall>::table;
   unbounded.max_surface_speed = nullptr;
-  // The near particles' forces are evaluated inside the pair loop, each thread for the particles whose
-  // pairs it sweeps (or after the loop that evaluates every list entry), and added after the floor's.
-  auto run = [&](const sm::sm_spreader_ops_v2 *ops, int threads = 2, bool pairs_once = true) {
+  // The near particles' forces are evaluated inside the pair loop's run, each thread for the particles
+  // whose pair forces it sums, and added after the floor's (in that run too, or after the floor's own).
+  auto run = [&](const sm::sm_spreader_ops_v2 *ops, int threads = 2, bool pairs_once = true,
+                 bool planes_in_place = true) {
     omp_set_num_threads(threads);
     Settings settings = quiet();
     settings.pairs_once = pairs_once;
+    settings.planes_in_place = planes_in_place;
     auto sim = scene.make(settings);
     if (ops) sim->add_geometry({ops, &ball, bind_law(scene.wall), "ball"});
     sim->run_steps(1500);
@@ -260,7 +262,42 @@ TEST(EngineGeometry, NearParticlesOnlyGiveTheSameBitsAsEveryParticle) {
   for (int threads : {1, 2, 3}) {
     EXPECT_TRUE(same_state(*run(bounded, threads), *every)) << threads << " threads";
     EXPECT_TRUE(same_state(*run(bounded, threads, false), *every)) << threads << " threads, every list entry";
+    EXPECT_TRUE(same_state(*run(bounded, threads, true, false), *every)) << threads << " threads, floor gathered";
   }
+}
+
+TEST(EngineGeometry, ItsForcesFollowTheFloorsOnParticlesThatTouchBoth) {
+  // A ball rising through the floor under the landing packing: particles pressed between the two get
+  // the floor's force and the ball's in that order, whichever path evaluates them.
+  Scene scene;
+  const TestBall ball{{0.006, 0.006, -0.0035}, {0, 0, 0.1}, 0.003};
+  sm::sm_spreader_ops_v2 unbounded = sm::detail::GeometryOps<TestBall>::table;
+  unbounded.max_surface_speed = nullptr;
+  std::size_t pressed = 0;  // particle-steps touching the floor and the ball at once (every 10 steps)
+  auto count_pressed = [&](const Simulation<double> &sim) {
+    const auto &a = sim.arrays();
+    const double cz = ball.centre[2] + ball.velocity[2] * sim.time();
+    for (std::size_t i = 0; i < sim.size(); ++i) {
+      const double dx = a.x[i] - ball.centre[0], dy = a.y[i] - ball.centre[1], dz = a.z[i] - cz;
+      pressed += a.z[i] < a.r[i] && std::sqrt(dx * dx + dy * dy + dz * dz) < ball.radius + a.r[i] ? 1u : 0u;
+    }
+    return true;
+  };
+  auto run = [&](const sm::sm_spreader_ops_v2 *ops, int threads, bool count) {
+    omp_set_num_threads(threads);
+    auto sim = scene.make(quiet());
+    sim->add_geometry({ops, &ball, bind_law(scene.wall), "ball"});
+    const double t_end = 2500 * sim->dt();
+    if (count) sim->run_until(t_end, count_pressed, 10);
+    else sim->run_until(t_end);
+    omp_set_num_threads(2);
+    return sim;
+  };
+  const auto every = run(&unbounded, 1, true);
+  EXPECT_GT(pressed, 20u) << "some particles should touch the floor and the ball at once";
+  for (int threads : {1, 2})
+    EXPECT_TRUE(same_state(*run(&sm::detail::GeometryOps<TestBall>::table, threads, false), *every))
+        << threads << " threads";
 }
 
 namespace {
