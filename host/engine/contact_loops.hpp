@@ -33,9 +33,10 @@ template <class Real> void wall_forces(const ContactLaw &law, const Particles<Re
 template <class Real>
 void geometry_contacts(const GeometryWall &geometry, const Particles<Real> &p, WallContacts<Real> &w);
 
-// For a caller that shares the records between its threads itself (one run for a geometry's contacts,
-// its law and the copies around them): whether the plugins take ranges (ABI 10.3; an older one takes
-// only its whole-list call), and the two calls above over records [lo, hi) alone, on the calling thread.
+// For a caller that shares the records between its threads itself (a geometry's copy, evaluated in the
+// pair loop's run by the threads that own its particles): whether the plugins take ranges (ABI 10.3;
+// an older one takes only its whole-list call), and the two calls above over records [lo, hi) alone,
+// on the calling thread.
 inline bool takes_ranges(const ContactLaw &law) { return law.abi_minor >= 3; }
 inline bool takes_ranges(const GeometryWall &geometry) { return geometry.abi_minor >= 3; }
 template <class Real>
