@@ -11,7 +11,6 @@
 namespace spreadmap::engine {
 
 namespace {
-
 template <class Real> PairLaw<Real> pair_law(const ContactLaw &law) {
   if constexpr (std::is_same_v<Real, double>)
     return {law.ops->pair_queue_f64, law.self, Real(law_range(law)), law_history(law)};
@@ -76,15 +75,16 @@ void wall_range(const ContactLaw &law, const Particles<Real> &p, const WallConta
 
 template <class Real>
 void pair_forces(const ContactLaw &law, const Particles<Real> &p, const ListView<Real> &list, PairSideJob side) {
-  if (!takes_ranges(law)) {
+  if (takes_ranges(law) && list.once() && law_pairs_once(law)) {
+    pair_forces_once(pair_law<Real>(law), p, list, side);  // runs the side job in its own run
+    return;
+  }
+  if (takes_ranges(law)) {
+    pair_forces_every_entry(pair_law<Real>(law), p, list);
+  } else {
     const PairList<Real> whole = list.whole();
     if constexpr (std::is_same_v<Real, double>) law.ops->pairs_f64(law.self, &p, &whole);
     else law.ops->pairs_f32(law.self, &p, &whole);
-  } else if (list.once() && law_pairs_once(law)) {
-    pair_forces_once(pair_law<Real>(law), p, list, side);
-    return;
-  } else {
-    pair_forces_every_entry(pair_law<Real>(law), p, list);
   }
   if (side.run) side.run(side.arg, 0, p.n);
 }
