@@ -1,13 +1,39 @@
+#include <engine/list_filter.hpp>
 #include <engine/neighbour_list.hpp>
 #include <engine/neighbour_listing.hpp>
 #include <engine/thread_team.hpp>
+#include <spreadmap/simd.hpp>
 
 #include <algorithm>
+#include <type_traits>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
 
 namespace spreadmap::engine {
+
+namespace {
+using FourAtATime = std::uint32_t (*)(std::uint32_t, const double *, const double *, const double *, const double *,
+                                      const double[3], double, const CellRanges &, std::uint32_t *, std::uint32_t);
+
+// The search four candidates at a time for these periodic axes, where it runs (double, AVX2 and up,
+// no sleeping particles); null where list_neighbours searches.
+template <class Real> FourAtATime four_at_a_time(const bool per[3], const Real *mobile) {
+#if SPREADMAP_SIMD_LEVELS
+  if constexpr (std::is_same_v<Real, double>) {
+    if (mobile || simd_level() < SimdLevel::avx2) return nullptr;
+    static constexpr FourAtATime by_axes[8] = {
+        list_neighbours_four<false, false, false>, list_neighbours_four<false, false, true>,
+        list_neighbours_four<false, true, false>,  list_neighbours_four<false, true, true>,
+        list_neighbours_four<true, false, false>,  list_neighbours_four<true, false, true>,
+        list_neighbours_four<true, true, false>,   list_neighbours_four<true, true, true>};
+    return by_axes[(per[0] ? 4 : 0) + (per[1] ? 2 : 0) + (per[2] ? 1 : 0)];
+  }
+#endif
+  (void)per, (void)mobile;
+  return nullptr;
+}
+}  // namespace
 
 template <class Real>
 void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Real> &grid,
@@ -20,6 +46,15 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   const std::size_t n = p.size();
   const Real len[3] = {Real(domain.length(0)), Real(domain.length(1)), Real(domain.length(2))};
   const bool per[3] = {domain.periodic[0], domain.periodic[1], domain.periodic[2]};
+  const FourAtATime four = four_at_a_time(per, mobile);
+  // Particle i's neighbours j >= above among `ranges`, written to out (room for `capacity`, and 4 more).
+  auto search = [&](std::uint32_t i, const CellRanges &ranges, std::uint32_t *out, std::uint32_t capacity,
+                    std::uint32_t above) -> std::uint32_t {
+    if constexpr (std::is_same_v<Real, double>)
+      if (four) return four(i, p.x.data(), p.y.data(), p.z.data(), p.r.data(), len, skin, ranges, out, above);
+    return list_neighbours(i, p.x.data(), p.y.data(), p.z.data(), p.r.data(), mobile, len, per, skin, ranges, out,
+                           capacity, above);
+  };
 
   const int max_threads = max_team_size();
   if (static_cast<int>(thread_nbr_.size()) < max_threads) thread_nbr_.resize(max_threads);
@@ -39,17 +74,18 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
       if (cell[i] != current_cell) {  // particles are sorted by cell: recompute only on a new cell
         current_cell = cell[i];
         ranges = neighbour_ranges(grid, current_cell, cell_start.data());
+        join_touching(ranges);
       }
       const auto above = static_cast<std::uint32_t>(i + 1);
       std::size_t candidates = 0;
       for (int q = 0; q < ranges.n; ++q)
         candidates += ranges.end[q] > above ? ranges.end[q] - std::max(ranges.begin[q], above) : 0;
-      // Room for every candidate, then written without a branch (a kept neighbour advances the end).
+      // Room for every candidate (and a four-lane store past them), then written without a branch (a
+      // kept neighbour advances the end).
       const std::size_t first = buf.size();
-      buf.resize(first + candidates);
-      const std::uint32_t count =
-          list_neighbours(static_cast<std::uint32_t>(i), p.x.data(), p.y.data(), p.z.data(), p.r.data(), mobile, len,
-                          per, skin, ranges, buf.data() + first, static_cast<std::uint32_t>(candidates), above);
+      buf.resize(first + candidates + 4);
+      const std::uint32_t count = search(static_cast<std::uint32_t>(i), ranges, buf.data() + first,
+                                         static_cast<std::uint32_t>(candidates), above);
       buf.resize(first + count);
       first_pair[i + 1] = count;
     }

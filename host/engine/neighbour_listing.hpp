@@ -3,6 +3,7 @@
 #pragma once
 #include <engine/cell_grid.hpp>
 #include <engine/minimum_image.hpp>
+#include <spreadmap/contact.hpp>  // wrap
 
 #include <cstdint>
 
