@@ -1,6 +1,6 @@
 // The CPU list build's search (engine/neighbour_list.cpp), four candidates at a time with AVX2. The
 // particles are sorted by cell, so the candidates of a particle are a few runs of consecutive indices
-// (the cells around its own, runs of touching cells joined): four candidates are a plain load from
+// (the cells around its own, a row of cells one run: neighbour_runs): four candidates are a plain load from
 // each of x, y, z and r, where the scalar search (list_neighbours) takes them one by one with a
 // branch on each periodic axis. Every lane performs list_neighbours' operations in its order
 // (minimum image, reach, distance squared), so the same neighbours are listed in the same order.
@@ -10,6 +10,7 @@
 #include <engine/pair_filter.hpp>
 
 #include <cstdint>
+#include <utility>
 
 namespace spreadmap::engine {
 
@@ -28,6 +29,53 @@ inline void join_touching(CellRanges &ranges) {
     }
   }
   ranges.n = joined + 1;
+}
+
+// The particles of the cells around `cell` (itself included) as neighbour_ranges and join_touching
+// give them, found row by row: along the grid's fastest axis the cells of a row lie side by side in
+// the sorted particles, so a row is one run (two where a periodic axis wraps) from two reads of
+// cell_start, where neighbour_ranges reads and sorts each of up to 27 cells.
+template <class Real>
+CellRanges neighbour_runs(const CellGrid<Real> &grid, std::uint32_t cell, const std::uint32_t *cell_start) {
+  int cc[3];
+  grid.coords(cell, cc);
+  const int fast = grid.order[0], mid = grid.order[1], slow = grid.order[2];
+  int along[3], am[3], as[3];
+  const int kf = detail::axis_neighbours(cc[fast], grid.n[fast], grid.periodic[fast], along);
+  const int km = detail::axis_neighbours(cc[mid], grid.n[mid], grid.periodic[mid], am);
+  const int ks = detail::axis_neighbours(cc[slow], grid.n[slow], grid.periodic[slow], as);
+  for (int k = 1; k < kf; ++k)  // at most three, in increasing order
+    for (int q = k; q > 0 && along[q - 1] > along[q]; --q) std::swap(along[q - 1], along[q]);
+  CellRanges r;
+  auto add = [&](std::uint32_t begin, std::uint32_t end) {
+    if (begin == end) return;
+    int at = r.n++;  // insertion by begin (runs of distinct cells never share a begin)
+    while (at > 0 && r.begin[at - 1] > begin) {
+      r.begin[at] = r.begin[at - 1];
+      r.end[at] = r.end[at - 1];
+      --at;
+    }
+    r.begin[at] = begin;
+    r.end[at] = end;
+  };
+  for (int a = 0; a < ks; ++a)
+    for (int b = 0; b < km; ++b) {
+      int c[3];
+      c[slow] = as[a];
+      c[mid] = am[b];
+      // the row's cells in increasing order, in runs of consecutive ones
+      for (int first = 0; first < kf;) {
+        int last = first;
+        while (last + 1 < kf && along[last + 1] == along[last] + 1) ++last;
+        c[fast] = along[first];
+        const std::size_t lo = grid.index(c);
+        c[fast] = along[last];
+        add(cell_start[lo], cell_start[grid.index(c) + 1]);
+        first = last + 1;
+      }
+    }
+  join_touching(r);
+  return r;
 }
 
 #if SPREADMAP_SIMD_LEVELS

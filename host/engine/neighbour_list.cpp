@@ -73,8 +73,7 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
     for (std::size_t i = lo; i < hi; ++i) {
       if (cell[i] != current_cell) {  // particles are sorted by cell: recompute only on a new cell
         current_cell = cell[i];
-        ranges = neighbour_ranges(grid, current_cell, cell_start.data());
-        join_touching(ranges);
+        ranges = neighbour_runs(grid, current_cell, cell_start.data());
       }
       const auto above = static_cast<std::uint32_t>(i + 1);
       std::size_t candidates = 0;
