@@ -127,6 +127,7 @@ void NeighbourList<Real>::build(const ParticleArrays<Real> &p, const CellGrid<Re
   if (has_mirror_) {
     scratch.resize(std::max(scratch.size(), 6 * (std::size_t(start[n]) + n)));
     packed_.resize(4 * n + 32 / sizeof(Real));
+    if (history > 0) in_reach_.assign(pairs, 1);  // any pair may hold carried history
   }
   if (history == 0 || old_nbr_.empty()) return;
   // Carry history: the same (i, j) pair of particles in the previous list, found by old indices.
@@ -174,6 +175,7 @@ template <class Real> void NeighbourList<Real>::find_mirrors() {
   pair_i.resize(first_pair[n]);
   pair_j.resize(first_pair[n]);
   pair_entry.resize(first_pair[n]);
+  in_reach_.assign(first_pair[n], 1);  // any pair may hold restored history
   parallel_for(this_thread_team(), n, [&](long long ii) {
     const auto i = static_cast<std::uint32_t>(ii);
     for (std::uint32_t k = upper[i], u = first_pair[i]; k < start[i + 1]; ++k, ++u) {

@@ -32,8 +32,9 @@ template <class Real> class NeighbourList {
   ListView<Real> view() {
     const bool once = has_mirror_ && !nbr.empty();
     if (!once) return {start.data(), nbr.data(), hist.data()};
-    return {start.data(),  nbr.data(),    hist.data(),       mirror.data(),     scratch.data(), upper.data(),
-            pair_i.data(), pair_j.data(), first_pair.data(), pair_entry.data(), &balance_,      packed()};
+    return {start.data(), nbr.data(),    hist.data(),     mirror.data(),     scratch.data(),
+            upper.data(), pair_i.data(), pair_j.data(),   first_pair.data(), pair_entry.data(),
+            &balance_,    packed(),      in_reach_.data()};
   }
   std::size_t entries() const { return nbr.size(); }
   // The particles whose pairs each of `threads` threads evaluates in the pair loop of pair_loops.hpp
@@ -69,6 +70,9 @@ template <class Real> class NeighbourList {
     const auto at = reinterpret_cast<std::uintptr_t>(packed_.data());
     return reinterpret_cast<Real *>((at + 31) & ~std::uintptr_t(31));
   }
+  // Each upper pair within the law's reach at its last filter (ListView::in_reach): 1 for all after a
+  // build or a restore, for a law with history.
+  std::vector<std::uint8_t> in_reach_;
   PairBalance balance_{};
   bool has_mirror_ = false;
   std::vector<std::uint32_t> old_start_, old_nbr_, lower_;

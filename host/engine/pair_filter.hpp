@@ -12,6 +12,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #if SPREADMAP_SIMD_LEVELS
 #include <immintrin.h>
 #endif
@@ -60,6 +61,22 @@ constexpr LaneOrders lane_orders() {
 }
 inline constexpr LaneOrders lane_order = lane_orders();
 
+// For each mask of 4 lanes, its lanes as 4 bytes of 0 or 1 (lane k in byte k, as x86 stores them).
+struct LaneBytes {
+  std::uint32_t of[16];
+};
+constexpr LaneBytes lane_bytes_table() {
+  LaneBytes b{};
+  for (int mask = 0; mask < 16; ++mask)
+    for (int k = 0; k < 4; ++k) b.of[mask] |= std::uint32_t(mask >> k & 1) << (8 * k);
+  return b;
+}
+inline constexpr LaneBytes lane_bytes = lane_bytes_table();
+// The mask of 4 bytes of 0 or 1 (byte k: lane k).
+inline int mask_of_bytes(std::uint32_t bytes) {
+  return int((bytes & 1u) | (bytes >> 7 & 2u) | (bytes >> 14 & 4u) | (bytes >> 21 & 8u));
+}
+
 // wrap_axis<true> on four lanes: (d - (d > h ? L : 0)) - (d < -h ? -L : 0).
 __attribute__((target("arch=x86-64-v3"))) inline __m256d wrap_lanes(__m256d d, double length) {
   const double half = 0.5 * length;
@@ -88,14 +105,15 @@ __attribute__((target("arch=x86-64-v3"))) inline __m256d packed_pair(const doubl
 }  // namespace detail
 
 // Filters the candidate pairs u, u + 4, ... of [u, stop) while four remain: appends those within reach
-// (distance below r_i + r_j, plus `range` with Gap) to the queue at `queued`, and with History the
-// entries of the others to `apart` at `parted`. Returns the first candidate left (fewer than 4 remain).
-// `packed` is 32-byte aligned.
+// (distance below r_i + r_j, plus `range` with Gap) to the queue at `queued`; with History, appends the
+// entries of those out of reach that were in reach at their last filter (in_reach[u], 1 or 0: only they
+// may hold history) to `apart` at `parted`, and sets in_reach[u] for each. Returns the first candidate
+// left (fewer than 4 remain). `packed` is 32-byte aligned.
 template <bool PX, bool PY, bool PZ, bool Gap, bool History>
 __attribute__((target("arch=x86-64-v3"))) inline std::uint32_t filter_packed(
     const double *packed, const std::uint32_t *pair_i, const std::uint32_t *pair_j, const std::uint32_t *pair_entry,
     std::uint32_t u, std::uint32_t stop, const double length[3], double range, const FilterQueue &q, int &queued,
-    std::uint32_t *apart, int &parted) {
+    std::uint8_t *in_reach, std::uint32_t *apart, int &parted) {
   for (; u + 4 <= stop; u += 4) {
     const std::uint32_t *i = pair_i + u, *j = pair_j + u;
     const __m256d a = detail::packed_pair(packed, i[0], j[0]), b = detail::packed_pair(packed, i[1], j[1]),
@@ -120,8 +138,12 @@ __attribute__((target("arch=x86-64-v3"))) inline std::uint32_t filter_packed(
     if constexpr (History) {
       const __m128i entries = _mm_loadu_si128(reinterpret_cast<const __m128i *>(pair_entry + u));
       detail::store_kept(q.entry + queued, entries, near);
-      detail::store_kept(apart + parted, entries, near ^ 0b1111);
-      parted += __builtin_popcount(unsigned(near ^ 0b1111));
+      std::uint32_t before;
+      std::memcpy(&before, in_reach + u, 4);
+      const int left = (near ^ 0b1111) & detail::mask_of_bytes(before);
+      detail::store_kept(apart + parted, entries, left);
+      parted += __builtin_popcount(unsigned(left));
+      std::memcpy(in_reach + u, &detail::lane_bytes.of[near], 4);
     }
     queued += __builtin_popcount(unsigned(near));
   }

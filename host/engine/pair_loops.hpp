@@ -59,8 +59,11 @@ struct PairBalance {
 // evaluates each pair once (law_pairs_once), each entry's mirror (the entry (j, i) of (i, j)), each particle's first
 // upper entry (j > i), the upper entries of all particles as one flat sequence (pair u is (pair_i[u], pair_j[u]), the
 // list's entry pair_entry[u]; particle i's are [first_pair[i], first_pair[i + 1])), and the scratch: a record of 6
-// values per entry, then 6 running sums per particle, all zero on entry to the loop and on exit; and room for each
-// particle's position and radius packed side by side (engine/pair_filter.hpp, 32 bytes aligned). Null where absent.
+// values per entry, then 6 running sums per particle, all zero on entry to the loop and on exit; room for each
+// particle's position and radius packed side by side (engine/pair_filter.hpp, 32 bytes aligned); and for a law with
+// history, in_reach[u]: 1 when pair u was within the law's reach at its last filter (and, after a build, for every
+// pair: any may hold carried history), else 0: a pair out of reach that was out of reach before holds no history
+// (the loop cleared it then), so only the others are read. Null where absent.
 template <class Real> struct ListView {
   const std::uint32_t *start = nullptr, *nbr = nullptr;
   Real *hist = nullptr;
@@ -70,6 +73,7 @@ template <class Real> struct ListView {
   const std::uint32_t *pair_i = nullptr, *pair_j = nullptr, *first_pair = nullptr, *pair_entry = nullptr;
   PairBalance *balance = nullptr;  // null: equal shares of the entries
   Real *packed = nullptr;
+  std::uint8_t *in_reach = nullptr;
 
   bool once() const { return mirror && scratch && pair_i; }
   PairList<Real> whole() const { return {start, nbr, hist}; }
@@ -323,9 +327,9 @@ void add_waiting_records(const Particles<Real> &p, const ListView<Real> &list, c
   }
 }
 
-// The pairs of entries `apart[0 .. n)` (their entries (i, j)) have left the law's reach: a pair whose
-// history holds any value forgets it, in both entries. Most hold none (they never touched, or were
-// cleared before): a read, where clearing every entry would write both.
+// The pairs of entries `apart[0 .. n)` (their entries (i, j)) have left the law's reach since their last
+// filter: a pair whose history holds any value forgets it, in both entries. Some hold none (the law
+// left them at zero): a read, where clearing every entry would write both.
 template <class Real>
 void forget_apart(const ListView<Real> &list, unsigned history, const std::uint32_t *apart, int n) {
   for (int a = 0; a < n; ++a) {
@@ -370,7 +374,7 @@ void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListV
         const double length[3] = {lx, ly, lz};
         const FilterQueue to{batch.i, batch.j, batch.entry, batch.dx, batch.dy, batch.dz};
         u = filter_packed<PX, PY, PZ, Gap, History>(packed, pair_i, pair_j, pair_entry, u, stop, length, law.range, to,
-                                                    queued, apart, parted);
+                                                    queued, list.in_reach, apart, parted);
       }
 #else
     (void)packed;
@@ -390,7 +394,8 @@ void sweep_pairs(const PairLaw<Real> &law, const Particles<Real> &p, const ListV
         const std::uint32_t k = pair_entry[u];
         batch.entry[queued] = k;
         apart[parted] = k;
-        parted += near ? 0 : 1;
+        parted += !near && list.in_reach[u] ? 1 : 0;
+        list.in_reach[u] = near ? 1 : 0;
       }
       queued += near ? 1 : 0;
     }

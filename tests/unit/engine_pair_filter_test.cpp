@@ -5,6 +5,7 @@
 #include <engine/pair_filter.hpp>
 #include <spreadmap/simd.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <gtest/gtest.h>
@@ -108,9 +109,10 @@ template <bool PX, bool PY, bool PZ, bool Gap, bool History> void expect_same_as
   spheres.r = c.r.data();
   pack_spheres(spheres, 0, spheres.n, packed);
   Queue fast(c.count()), plain(c.count());
+  std::vector<std::uint8_t> in_reach(c.count(), 1);  // as after a build: every pair may hold history
   const std::uint32_t left = filter_packed<PX, PY, PZ, Gap, History>(
       packed, c.pair_i.data(), c.pair_j.data(), c.pair_entry.data(), 0, c.count(), c.length, range, fast.to(),
-      fast.size, fast.apart.data(), fast.parted);
+      fast.size, in_reach.data(), fast.apart.data(), fast.parted);
   EXPECT_EQ(left, c.count() / 4 * 4) << "it stops where fewer than four candidates remain";
   filter_scalar<PX, PY, PZ, Gap, History>(c, 0, left, range, plain);
   EXPECT_GT(plain.size, 50);
@@ -132,6 +134,19 @@ template <bool PX, bool PY, bool PZ, bool Gap, bool History> void expect_same_as
               std::vector(plain.entry.begin(), plain.entry.begin() + n));
     EXPECT_EQ(std::vector(fast.apart.begin(), fast.apart.begin() + plain.parted),
               std::vector(plain.apart.begin(), plain.apart.begin() + plain.parted));
+    // each pair filtered now says whether it was in reach; filtered again, none has left the reach
+    std::vector<std::uint8_t> kept(c.count(), 0);
+    for (int q = 0; q < plain.size; ++q) {
+      const auto u = std::find(c.pair_entry.begin(), c.pair_entry.end(), plain.entry[q]) - c.pair_entry.begin();
+      kept[std::size_t(u)] = 1;
+    }
+    EXPECT_EQ(std::vector(in_reach.begin(), in_reach.begin() + left), std::vector(kept.begin(), kept.begin() + left));
+    Queue again(c.count());
+    filter_packed<PX, PY, PZ, Gap, History>(packed, c.pair_i.data(), c.pair_j.data(), c.pair_entry.data(), 0, c.count(),
+                                            c.length, range, again.to(), again.size, in_reach.data(),
+                                            again.apart.data(), again.parted);
+    EXPECT_EQ(again.size, plain.size);
+    EXPECT_EQ(again.parted, 0) << "out of reach at both filters: nothing to forget";
   }
 }
 
