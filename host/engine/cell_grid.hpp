@@ -48,6 +48,19 @@ template <class Real> struct CellGrid {
 struct CellRanges {
   std::uint32_t begin[27], end[27];
   int n = 0;
+
+  // Adds [b, e) in its place by begin, unless it is empty (ranges of distinct cells never share a begin).
+  SM_HD void insert(std::uint32_t b, std::uint32_t e) {
+    if (b == e) return;
+    int at = n++;
+    while (at > 0 && begin[at - 1] > b) {
+      begin[at] = begin[at - 1];
+      end[at] = end[at - 1];
+      --at;
+    }
+    begin[at] = b;
+    end[at] = e;
+  }
 };
 
 namespace detail {
@@ -80,16 +93,7 @@ SM_HD CellRanges neighbour_ranges(const CellGrid<Real> &grid, std::uint32_t cell
       for (int c = 0; c < kx; ++c) {
         const int nc[3] = {ax[c], ay[b], az[a]};
         const std::size_t q = grid.index(nc);
-        if (cell_start[q] == cell_start[q + 1]) continue;
-        // insertion by begin (ranges of distinct cells never share a begin)
-        int at = r.n++;
-        while (at > 0 && r.begin[at - 1] > cell_start[q]) {
-          r.begin[at] = r.begin[at - 1];
-          r.end[at] = r.end[at - 1];
-          --at;
-        }
-        r.begin[at] = cell_start[q];
-        r.end[at] = cell_start[q + 1];
+        r.insert(cell_start[q], cell_start[q + 1]);
       }
   return r;
 }

@@ -47,17 +47,6 @@ CellRanges neighbour_runs(const CellGrid<Real> &grid, std::uint32_t cell, const 
   for (int k = 1; k < kf; ++k)  // at most three, in increasing order
     for (int q = k; q > 0 && along[q - 1] > along[q]; --q) std::swap(along[q - 1], along[q]);
   CellRanges r;
-  auto add = [&](std::uint32_t begin, std::uint32_t end) {
-    if (begin == end) return;
-    int at = r.n++;  // insertion by begin (runs of distinct cells never share a begin)
-    while (at > 0 && r.begin[at - 1] > begin) {
-      r.begin[at] = r.begin[at - 1];
-      r.end[at] = r.end[at - 1];
-      --at;
-    }
-    r.begin[at] = begin;
-    r.end[at] = end;
-  };
   for (int a = 0; a < ks; ++a)
     for (int b = 0; b < km; ++b) {
       int c[3];
@@ -70,7 +59,7 @@ CellRanges neighbour_runs(const CellGrid<Real> &grid, std::uint32_t cell, const 
         c[fast] = along[first];
         const std::size_t lo = grid.index(c);
         c[fast] = along[last];
-        add(cell_start[lo], cell_start[grid.index(c) + 1]);
+        r.insert(cell_start[lo], cell_start[grid.index(c) + 1]);
         first = last + 1;
       }
     }

@@ -71,7 +71,7 @@ template <class Real> class NeighbourList {
     return reinterpret_cast<Real *>((at + 31) & ~std::uintptr_t(31));
   }
   // Each upper pair within the law's reach at its last filter (ListView::in_reach): 1 for all after a
-  // build or a restore, for a law with history.
+  // build for a law with history, and after a restore (which does not know the law).
   std::vector<std::uint8_t> in_reach_;
   PairBalance balance_{};
   bool has_mirror_ = false;
