@@ -308,12 +308,13 @@ void evaluate_walls(const Law &shared_law, const Particles<Real> &shared_p, cons
 
 // A law with the cohesion part (contact_parts.hpp) has a member `cohesion`, and one with the rolling
 // part a member `rolling`; it writes its force as
-//   template <bool Cohesive, bool Spring, class Real>
+//   template <bool Cohesive, RollingForm Rolls, class Real>
 //   SM_HD ContactForce<Real> force(const ContactState<Real> &, Real *hist) const;
 // (without the rolling part: force<Cohesive>) with each part under `if constexpr`. Its loops are compiled
 // for each choice, through LoopForm, and the choice is made once per batch (in_loop_form): a scene without
-// cohesion or a rolling spring runs the law's code without them, the same instructions and bits as a law
-// that never had them. The rolling spring adds its history after the law's: history_of(law) per instance.
+// cohesion or rolling friction runs the law's code without them, the same instructions and bits as a law
+// that never had them (a loop whose lanes all compute a part and drop it still pays for its square roots
+// and divides). The rolling spring adds its history after the law's: history_of(law) per instance.
 template <class Law>
 concept HasCohesion = requires(const Law &law) {
   { law.cohesion.on } -> std::convertible_to<bool>;
@@ -326,14 +327,21 @@ concept HasRolling = requires(const Law &law) {
 // History values the rolling spring (Rolling in contact_parts.hpp) keeps after its law's own.
 inline constexpr int rolling_spring_history = 3;
 
-template <class Law, bool Cohesive, bool Spring> struct LoopForm {
-  static constexpr int history = Law::history + (Spring ? rolling_spring_history : 0);
+// The rolling part a loop is compiled with: none (no rolling friction), the constant torque, or the
+// spring (its history after the law's).
+enum class RollingForm { none, constant, spring };
+template <RollingForm Rolls>
+inline constexpr int rolling_history = Rolls == RollingForm::spring ? rolling_spring_history : 0;
+
+template <class Law, bool Cohesive, RollingForm Rolls> struct LoopForm {
+  static constexpr RollingForm rolling = Rolls;
+  static constexpr int history = Law::history + rolling_history<Rolls>;
   // the rolling spring's history mirrors: the form's does when the law's own does, or when it has none
   static constexpr bool history_mirrors = Law::history == 0 || MirroredHistory<Law>;
   Law law;
   SM_HD double range() const requires Cohesive { return law.cohesion.range; }
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    if constexpr (HasRolling<Law>) return law.template force<Cohesive, Spring>(c, hist);
+    if constexpr (HasRolling<Law>) return law.template force<Cohesive, Rolls>(c, hist);
     else return law.template force<Cohesive>(c, hist);
   }
 };
@@ -344,23 +352,24 @@ template <class Law> int history_of(const Law &law) {
   else return Law::history;
 }
 
-// Calls run(law as the loops take it): LoopForm<Law, cohesion on?, rolling spring?> for a law with
-// either part, else the law. Springs false: the forms without the rolling spring only (the CUDA
-// kernels, which keep the law's own history; the host steps a scene with a spring on the CPU).
+// Calls run(law as the loops take it): LoopForm<Law, cohesion on?, its rolling form> for a law with
+// either part, else the law. Springs false: only the constant torque's form, whatever the rolling
+// friction (the CUDA kernels, which keep the law's own history; the host steps a scene with a spring
+// on the CPU), so that the kernels are compiled for two forms, not six.
 template <bool Springs = true, class Law, class Run> decltype(auto) in_loop_form(const Law &law, Run &&run) {
   if constexpr (HasCohesion<Law> || HasRolling<Law>) {
     bool cohesive = false;
     if constexpr (HasCohesion<Law>) cohesive = law.cohesion.on;
+    auto with = [&]<RollingForm Rolls>() -> decltype(auto) {
+      if constexpr (HasCohesion<Law>)
+        if (cohesive) return run(LoopForm<Law, true, Rolls>{law});
+      return run(LoopForm<Law, false, Rolls>{law});
+    };
     if constexpr (Springs && HasRolling<Law>) {
-      if (law.rolling.spring) {
-        if constexpr (HasCohesion<Law>)
-          if (cohesive) return run(LoopForm<Law, true, true>{law});
-        return run(LoopForm<Law, false, true>{law});
-      }
+      if (law.rolling.spring) return with.template operator()<RollingForm::spring>();
+      if (!(law.rolling.mu_r > 0)) return with.template operator()<RollingForm::none>();
     }
-    if constexpr (HasCohesion<Law>)
-      if (cohesive) return run(LoopForm<Law, true, false>{law});
-    return run(LoopForm<Law, false, false>{law});
+    return with.template operator()<RollingForm::constant>();
   } else {
     return run(law);
   }

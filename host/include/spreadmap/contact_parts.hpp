@@ -259,9 +259,10 @@ template <class Real> SM_HD void clear_history(Real *hist, int n) {
 // k_r = 2.25 k_n mu_r^2 r_eff^2 (k_n the law's normal stiffness, F_n / delta), and limited at
 // M_m = mu_r r_eff |F_n|; a dashpot M_d = -eta_r 2 sqrt(I_r k_r) w_r, I_r = (7/5) m_eq r_eff^2 (a sphere
 // rolling on a wall), acts below the limit only. Under a torque below M_m a sphere turns by the
-// elastic angle T / k_r and rests there; above it, it rolls against M_m. The spring's choice is made
-// per instance: the loops are compiled with and without it (LoopForm in contact.hpp), so a law
-// without the spring runs the code and bits it always ran. Host side: bind(); SM_HD: the torques.
+// elastic angle T / k_r and rests there; above it, it rolls against M_m. The choice is made per
+// instance: the loops are compiled without rolling friction, with the constant torque and with the
+// spring (RollingForm, LoopForm in contact.hpp), so a law without the spring runs the code and bits it
+// always ran, and one without rolling friction none of it. Host side: bind(); SM_HD: the torques.
 struct Rolling {
   static constexpr int history = rolling_spring_history;  // of the spring; none for the constant torque
   double mu_r;
@@ -284,10 +285,12 @@ struct Rolling {
     return std::sqrt(2.25 * k_n * mu_r * mu_r / (0.4 * m_eq));
   }
 
-  // Torque on i [N m]. Spring: hist holds the spring's 3 values (after the law's).
-  template <bool Spring, class Real>
+  // Torque on i [N m]. The spring: hist holds its 3 values (after the law's).
+  template <RollingForm Rolls, class Real>
   SM_HD Vec3<Real> torque(const ContactState<Real> &c, Real fn_abs, Real k_n, Real *hist) const {
-    if constexpr (!Spring) {
+    if constexpr (Rolls == RollingForm::none) {
+      return {0, 0, 0};
+    } else if constexpr (Rolls == RollingForm::constant) {
       return rolling_torque(Real(mu_r), c.r_eff, fn_abs, c.normal, c.w_rel, c.m_eq, c.dt);
     } else {
       const Vec3<Real> w = c.w_rel - c.normal * dot(c.w_rel, c.normal);
@@ -310,8 +313,8 @@ struct Rolling {
     }
   }
   // Clears the spring (the contact ended).
-  template <bool Spring, class Real> SM_HD void clear(Real *hist) const {
-    if constexpr (Spring) clear_history(hist, history);
+  template <RollingForm Rolls, class Real> SM_HD void clear(Real *hist) const {
+    if constexpr (Rolls == RollingForm::spring) clear_history(hist, history);
   }
 };
 

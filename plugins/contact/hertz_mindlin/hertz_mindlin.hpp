@@ -144,10 +144,10 @@ struct HertzMindlin {
 
   // Without the rolling spring (Law::history values in hist); the loops reach it through in_loop_form.
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    return cohesion.on ? force<true, false>(c, hist) : force<false, false>(c, hist);
+    return cohesion.on ? force<true, RollingForm::constant>(c, hist) : force<false, RollingForm::constant>(c, hist);
   }
   // hist: the tangential spring's 3 values, then the rolling spring's 3 (Spring).
-  template <bool Cohesive, bool Spring, class Real>
+  template <bool Cohesive, RollingForm Rolls, class Real>
   SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
     const Real a = std::sqrt(c.r_eff * c.overlap);  // contact radius
@@ -158,10 +158,10 @@ struct HertzMindlin {
     const Real beta_t = Real(alpha) * std::sqrt(tangential_mass(c.m_eq) * k_t);
     f.tangent = tangential_spring(c.normal, c.v_t, k_t, beta_t, Real(mu) * fn_abs, c.dt, hist);
     // the rolling spring's k_n is the secant stiffness F_n / delta = (2/3) S_n, as LIGGGHTS' epsd takes it
-    f.torque = rolling.template torque<Spring>(c, fn_abs, Real(2) / Real(3) * s_n, hist + history);
+    f.torque = rolling.template torque<Rolls>(c, fn_abs, Real(2) / Real(3) * s_n, hist + history);
     if constexpr (Cohesive) f.normal -= cohesion.force(c.r_eff, c.overlap);
     // apart, or across a gap within the cohesion's range: the attraction alone, history cleared
-    return touching_only<Cohesive, history + (Spring ? Rolling::history : 0)>(f, c, cohesion, hist);
+    return touching_only<Cohesive, history + rolling_history<Rolls>>(f, c, cohesion, hist);
   }
 };
 

@@ -76,10 +76,10 @@ struct HookeHistory {
 
   // Without the rolling spring (Law::history values in hist); the loops reach it through in_loop_form.
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    return cohesion.on ? force<true, false>(c, hist) : force<false, false>(c, hist);
+    return cohesion.on ? force<true, RollingForm::constant>(c, hist) : force<false, RollingForm::constant>(c, hist);
   }
   // hist: the tangential spring's 3 values, then the rolling spring's 3 (Spring).
-  template <bool Cohesive, bool Spring, class Real>
+  template <bool Cohesive, RollingForm Rolls, class Real>
   SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     ContactForce<Real> f;
     f.normal = normal.force(c.m_eq, c.overlap, c.v_n);
@@ -87,10 +87,10 @@ struct HookeHistory {
     const Real w = Real(normal.omega0);
     const Real k_t = Real(kappa) * c.m_eq * w * w;
     f.tangent = tangential_spring(c.normal, c.v_t, k_t, c.m_eq * Real(tangent_rate), Real(mu) * fn_abs, c.dt, hist);
-    f.torque = rolling.template torque<Spring>(c, fn_abs, c.m_eq * w * w, hist + history);
+    f.torque = rolling.template torque<Rolls>(c, fn_abs, c.m_eq * w * w, hist + history);
     if constexpr (Cohesive) f.normal -= cohesion.force(c.r_eff, c.overlap);
     // apart, or across a gap within the cohesion's range: the attraction alone, history cleared
-    return touching_only<Cohesive, history + (Spring ? Rolling::history : 0)>(f, c, cohesion, hist);
+    return touching_only<Cohesive, history + rolling_history<Rolls>>(f, c, cohesion, hist);
   }
 };
 

@@ -88,9 +88,9 @@ struct HookeSlider {
 
   // Without the rolling spring (Law::history values in hist); the loops reach it through in_loop_form.
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    return cohesion.on ? force<true, false>(c, hist) : force<false, false>(c, hist);
+    return cohesion.on ? force<true, RollingForm::constant>(c, hist) : force<false, RollingForm::constant>(c, hist);
   }
-  template <bool Cohesive, bool Spring, class Real>
+  template <bool Cohesive, RollingForm Rolls, class Real>
   SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     // No branch on the contact (selects only; overlap <= 0 gives zeros), so that loops over contacts vectorise.
     // The rolling spring's form keeps history and is not vectorised: it may branch.
@@ -102,12 +102,12 @@ struct HookeSlider {
     const Real round_off = slip_round_off(c.v_n < 0 ? -c.v_n : c.v_n);
     f.tangent =
         slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min), round_off);
-    if constexpr (Spring) {
+    if constexpr (Rolls == RollingForm::spring) {
       const Real w = Real(normal.omega0);
-      if (touching) f.torque = rolling.template torque<Spring>(c, fn_abs, c.m_eq * w * w, hist);
-      else rolling.template clear<Spring>(hist);
+      if (touching) f.torque = rolling.template torque<Rolls>(c, fn_abs, c.m_eq * w * w, hist);
+      else rolling.template clear<Rolls>(hist);
     } else {
-      f.torque = rolling.template torque<Spring>(c, fn_abs, Real(0), hist);
+      f.torque = rolling.template torque<Rolls>(c, fn_abs, Real(0), hist);
     }
     if constexpr (Cohesive)
       f.normal -= touching ? cohesion.force(c.r_eff, c.overlap) : cohesion.gap_force(c.r_eff, c.overlap);

@@ -1,0 +1,103 @@
+// The forms a law's loops are compiled in (LoopForm, in_loop_form in contact.hpp): which one a law's
+// parameters choose, and that the form without rolling friction gives the very bits of the constant
+// torque's form at mu_r = 0 (its torque is zero there; the form only skips the work).
+#include <spreadmap/contact_parts.hpp>
+
+#include "plugins/contact/hertz_mindlin/hertz_mindlin.hpp"
+#include "plugins/contact/hooke_history/hooke_history.hpp"
+#include "plugins/contact/hooke_slider/hooke_slider.hpp"
+#include "verification/contact_support.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <type_traits>
+#include <vector>
+
+namespace sm = spreadmap;
+
+namespace {
+
+// The rolling form in_loop_form chooses for a law, on the CPU (springs) and for the CUDA kernels.
+template <bool Springs, class Law> sm::RollingForm chosen_form(const Law &law) {
+  return sm::in_loop_form<Springs>(law, [](const auto &form) { return std::decay_t<decltype(form)>::rolling; });
+}
+
+template <class Law> void expect_forms_follow_the_rolling_friction(const nlohmann::json &base) {
+  auto with = [&](const nlohmann::json &more) {
+    nlohmann::json p = base;
+    p.update(more);
+    return sm::test::bind_law<Law>(p);
+  };
+  const Law none = with({{"rolling_friction", 0.0}}), constant = with({{"rolling_friction", 0.1}}),
+            spring = with({{"rolling_friction", 0.1}, {"rolling_model", "epsd"}}),
+            spring_off = with({{"rolling_friction", 0.0}, {"rolling_model", "epsd"}});
+  EXPECT_EQ(chosen_form<true>(none), sm::RollingForm::none);
+  EXPECT_EQ(chosen_form<true>(constant), sm::RollingForm::constant);
+  EXPECT_EQ(chosen_form<true>(spring), sm::RollingForm::spring);
+  EXPECT_EQ(chosen_form<true>(spring_off), sm::RollingForm::none) << "epsd at mu_r = 0 has no spring";
+  // the kernels are compiled for the constant torque's form alone, whatever the friction
+  EXPECT_EQ(chosen_form<false>(none), sm::RollingForm::constant);
+  EXPECT_EQ(chosen_form<false>(spring), sm::RollingForm::constant);
+}
+
+TEST(ContactLoopForms, TheRollingFrictionChoosesTheForm) {
+  expect_forms_follow_the_rolling_friction<sm::HookeSlider>(nlohmann::json::object());
+  expect_forms_follow_the_rolling_friction<sm::HookeHistory>(nlohmann::json::object());
+  expect_forms_follow_the_rolling_friction<sm::HertzMindlin>({{"youngs_modulus", 5e7}});
+}
+
+// Random contacts of 250 um spheres, touching and (a tenth) just apart, sliding, rolling and spinning.
+std::vector<sm::ContactState<double>> random_contacts(int n) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-1, 1), overlap(-0.3e-6, 3e-6);
+  std::vector<sm::ContactState<double>> contacts(n);
+  for (auto &c : contacts) {
+    sm::Vec3<double> normal{unit(rng), unit(rng), unit(rng)};
+    normal = normal * (1 / sm::norm(normal));
+    c.normal = normal;
+    c.overlap = overlap(rng);
+    c.v_n = 0.2 * unit(rng);
+    const sm::Vec3<double> slip{0.05 * unit(rng), 0.05 * unit(rng), 0.05 * unit(rng)};
+    c.v_t = slip - normal * sm::dot(slip, normal);
+    c.w_rel = {300 * unit(rng), 300 * unit(rng), 300 * unit(rng)};
+    c.m_eq = 1.8e-8 * (1 + 0.5 * unit(rng));
+    c.r_eff = 62.5e-6 * (1 + 0.5 * unit(rng));
+    c.dt = 7.5e-7;
+  }
+  return contacts;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// The forms without rolling friction and with the constant torque, at mu_r = 0: equal bits, history
+// included.
+template <class Law> void expect_no_rolling_form_keeps_the_bits(const nlohmann::json &params) {
+  const Law law = sm::test::bind_law<Law>(params);
+  ASSERT_EQ(law.rolling.mu_r, 0.0);
+  const sm::LoopForm<Law, false, sm::RollingForm::none> skipped{law};
+  const sm::LoopForm<Law, false, sm::RollingForm::constant> computed{law};
+  int touching = 0;
+  std::vector<double> h1(Law::history + 1, 0.0), h2(Law::history + 1, 0.0);
+  for (const auto &c : random_contacts(2000)) {
+    const auto a = skipped(c, h1.data()), b = computed(c, h2.data());
+    touching += c.overlap > 0;
+    EXPECT_TRUE(same_bits(a.normal, b.normal));
+    for (auto [x, y] : {std::pair{a.tangent.x, b.tangent.x}, std::pair{a.tangent.y, b.tangent.y},
+                        std::pair{a.tangent.z, b.tangent.z}, std::pair{a.torque.x, b.torque.x},
+                        std::pair{a.torque.y, b.torque.y}, std::pair{a.torque.z, b.torque.z}})
+      EXPECT_TRUE(same_bits(x, y));
+    for (int q = 0; q < Law::history; ++q) EXPECT_TRUE(same_bits(h1[q], h2[q]));
+  }
+  EXPECT_GT(touching, 1500);
+}
+
+TEST(ContactLoopForms, WithoutRollingFrictionTheSkippedPartChangesNoBit) {
+  expect_no_rolling_form_keeps_the_bits<sm::HookeSlider>({{"slider", "viscous"}});
+  expect_no_rolling_form_keeps_the_bits<sm::HookeSlider>({{"slider", "stick"}});
+  expect_no_rolling_form_keeps_the_bits<sm::HookeHistory>(nlohmann::json::object());
+  expect_no_rolling_form_keeps_the_bits<sm::HertzMindlin>({{"youngs_modulus", 5e7}});
+}
+
+}  // namespace
