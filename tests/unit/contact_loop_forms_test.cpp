@@ -1,6 +1,7 @@
 // The forms a law's loops are compiled in (LoopForm, in_loop_form in contact.hpp): which one a law's
 // parameters choose, and that the form without rolling friction gives the very bits of the constant
-// torque's form at mu_r = 0 (its torque is zero there; the form only skips the work).
+// torque's form at mu_r = 0 (its torque is zero there; the form only skips the work), as each of
+// HookeSlider's own forms (its slider kinds) gives the bits of the loop that reads the kind per contact.
 #include <spreadmap/contact_parts.hpp>
 
 #include "plugins/contact/hertz_mindlin/hertz_mindlin.hpp"
@@ -98,6 +99,42 @@ TEST(ContactLoopForms, WithoutRollingFrictionTheSkippedPartChangesNoBit) {
   expect_no_rolling_form_keeps_the_bits<sm::HookeSlider>({{"slider", "stick"}});
   expect_no_rolling_form_keeps_the_bits<sm::HookeHistory>(nlohmann::json::object());
   expect_no_rolling_form_keeps_the_bits<sm::HertzMindlin>({{"youngs_modulus", 5e7}});
+}
+
+// HookeSlider's own forms, its slider kinds: each chosen by the slider parameter, and each giving the
+// bits of the loop that reads the kind per contact.
+sm::ContactForce<double> force_of(const auto &form, const sm::ContactState<double> &c) {
+  return form(c, static_cast<double *>(nullptr));
+}
+
+template <int Own> void expect_own_form_keeps_the_bits(const sm::HookeSlider &law) {
+  const sm::LoopForm<sm::HookeSlider, false, sm::RollingForm::none, Own> compiled{law};
+  const sm::LoopForm<sm::HookeSlider, false, sm::RollingForm::none, sm::any_own_form> read{law};
+  int acting = 0;
+  for (const auto &c : random_contacts(2000)) {
+    const auto a = force_of(compiled, c), b = force_of(read, c);
+    acting += a.tangent.x != 0;
+    EXPECT_TRUE(same_bits(a.normal, b.normal));
+    EXPECT_TRUE(same_bits(a.tangent.x, b.tangent.x) && same_bits(a.tangent.y, b.tangent.y) &&
+                same_bits(a.tangent.z, b.tangent.z));
+  }
+  EXPECT_GT(acting, 1500) << "the slider acts on the touching contacts";
+}
+
+TEST(ContactLoopForms, TheSliderIsCompiledIntoHookeSlidersLoopsWithTheSameBits) {
+  const char *names[] = {"stick", "viscous", "coulomb"};
+  for (int kind = 0; kind < 3; ++kind) {
+    const auto law = sm::test::bind_law<sm::HookeSlider>({{"slider", names[kind]}});
+    const int chosen =
+        sm::in_loop_form<true>(law, [](const auto &form) { return std::decay_t<decltype(form)>::own_form; });
+    EXPECT_EQ(chosen, kind) << names[kind];
+    const int kernels =
+        sm::in_loop_form<false>(law, [](const auto &form) { return std::decay_t<decltype(form)>::own_form; });
+    EXPECT_EQ(kernels, sm::any_own_form) << "the CUDA kernels read the slider per contact";
+  }
+  expect_own_form_keeps_the_bits<0>(sm::test::bind_law<sm::HookeSlider>({{"slider", "stick"}}));
+  expect_own_form_keeps_the_bits<1>(sm::test::bind_law<sm::HookeSlider>({{"slider", "viscous"}}));
+  expect_own_form_keeps_the_bits<2>(sm::test::bind_law<sm::HookeSlider>({{"slider", "coulomb"}}));
 }
 
 }  // namespace

@@ -315,6 +315,10 @@ void evaluate_walls(const Law &shared_law, const Particles<Real> &shared_p, cons
 // cohesion or rolling friction runs the law's code without them, the same instructions and bits as a law
 // that never had them (a loop whose lanes all compute a part and drop it still pays for its square roots
 // and divides). The rolling spring adds its history after the law's: history_of(law) per instance.
+// A law may compile a run-time choice of its own into its loops the same way (HookeSlider: its slider):
+// it declares `static constexpr int own_forms` and `int own_form() const` (0 .. own_forms - 1), and its
+// force takes the form as a third parameter, force<Cohesive, Rolls, Own>, where any_own_form means
+// "read the choice per contact" (the law's plain call, and the CUDA kernels).
 template <class Law>
 concept HasCohesion = requires(const Law &law) {
   { law.cohesion.on } -> std::convertible_to<bool>;
@@ -333,15 +337,24 @@ enum class RollingForm { none, constant, spring };
 template <RollingForm Rolls>
 inline constexpr int rolling_history = Rolls == RollingForm::spring ? rolling_spring_history : 0;
 
-template <class Law, bool Cohesive, RollingForm Rolls> struct LoopForm {
+inline constexpr int any_own_form = -1;
+template <class Law>
+concept HasOwnForms = requires(const Law &law) {
+  { Law::own_forms } -> std::convertible_to<int>;
+  { law.own_form() } -> std::convertible_to<int>;
+};
+
+template <class Law, bool Cohesive, RollingForm Rolls, int Own = any_own_form> struct LoopForm {
   static constexpr RollingForm rolling = Rolls;
+  static constexpr int own_form = Own;
   static constexpr int history = Law::history + rolling_history<Rolls>;
   // the rolling spring's history mirrors: the form's does when the law's own does, or when it has none
   static constexpr bool history_mirrors = Law::history == 0 || MirroredHistory<Law>;
   Law law;
   SM_HD double range() const requires Cohesive { return law.cohesion.range; }
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    if constexpr (HasRolling<Law>) return law.template force<Cohesive, Rolls>(c, hist);
+    if constexpr (HasOwnForms<Law>) return law.template force<Cohesive, Rolls, Own>(c, hist);
+    else if constexpr (HasRolling<Law>) return law.template force<Cohesive, Rolls>(c, hist);
     else return law.template force<Cohesive>(c, hist);
   }
 };
@@ -352,18 +365,35 @@ template <class Law> int history_of(const Law &law) {
   else return Law::history;
 }
 
-// Calls run(law as the loops take it): LoopForm<Law, cohesion on?, its rolling form> for a law with
-// either part, else the law. Springs false: only the constant torque's form, whatever the rolling
-// friction (the CUDA kernels, which keep the law's own history; the host steps a scene with a spring
-// on the CPU), so that the kernels are compiled for two forms, not six.
+namespace detail {
+// Calls with.template operator()<form>() for the law's own form `form` of `Forms` (any_own_form when
+// out of range).
+template <int Forms, class With> decltype(auto) with_own_form(int form, With &&with) {
+  if constexpr (Forms == 0) {
+    return with.template operator()<any_own_form>();
+  } else {
+    if (form == Forms - 1) return with.template operator()<Forms - 1>();
+    return with_own_form<Forms - 1>(form, with);
+  }
+}
+}  // namespace detail
+
+// Calls run(law as the loops take it): LoopForm<Law, cohesion on?, its rolling form, its own form> for a
+// law with any of them, else the law. Springs false: only the constant torque's form, whatever the
+// rolling friction, and no own form (the CUDA kernels, which keep the law's own history; the host steps
+// a scene with a spring on the CPU), so that the kernels are compiled for two forms, not a dozen.
 template <bool Springs = true, class Law, class Run> decltype(auto) in_loop_form(const Law &law, Run &&run) {
-  if constexpr (HasCohesion<Law> || HasRolling<Law>) {
+  if constexpr (HasCohesion<Law> || HasRolling<Law> || HasOwnForms<Law>) {
     bool cohesive = false;
     if constexpr (HasCohesion<Law>) cohesive = law.cohesion.on;
     auto with = [&]<RollingForm Rolls>() -> decltype(auto) {
-      if constexpr (HasCohesion<Law>)
-        if (cohesive) return run(LoopForm<Law, true, Rolls>{law});
-      return run(LoopForm<Law, false, Rolls>{law});
+      auto own = [&]<int Own>() -> decltype(auto) {
+        if constexpr (HasCohesion<Law>)
+          if (cohesive) return run(LoopForm<Law, true, Rolls, Own>{law});
+        return run(LoopForm<Law, false, Rolls, Own>{law});
+      };
+      if constexpr (Springs && HasOwnForms<Law>) return detail::with_own_form<Law::own_forms>(law.own_form(), own);
+      else return own.template operator()<any_own_form>();
     };
     if constexpr (Springs && HasRolling<Law>) {
       if (law.rolling.spring) return with.template operator()<RollingForm::spring>();

@@ -57,6 +57,10 @@ struct HookeSlider {
       param_vdw_cutoff,
   };
   static constexpr int history = 0;
+  // The slider is compiled into the loops (its own forms, contact.hpp): a loop computes only its slider's
+  // force, without the divide of the stick slider for the others.
+  static constexpr int own_forms = 3;
+  int own_form() const { return int(slider); }
 
   LinearNormal normal;
   double mu;  // sliding friction
@@ -88,9 +92,10 @@ struct HookeSlider {
 
   // Without the rolling spring (Law::history values in hist); the loops reach it through in_loop_form.
   template <class Real> SM_HD ContactForce<Real> operator()(const ContactState<Real> &c, Real *hist) const {
-    return cohesion.on ? force<true, RollingForm::constant>(c, hist) : force<false, RollingForm::constant>(c, hist);
+    return cohesion.on ? force<true, RollingForm::constant, any_own_form>(c, hist)
+                       : force<false, RollingForm::constant, any_own_form>(c, hist);
   }
-  template <bool Cohesive, RollingForm Rolls, class Real>
+  template <bool Cohesive, RollingForm Rolls, int Own, class Real>
   SM_HD ContactForce<Real> force(const ContactState<Real> &c, Real *hist) const {
     // No branch on the contact (selects only; overlap <= 0 gives zeros), so that loops over contacts vectorise.
     // The rolling spring's form keeps history and is not vectorised: it may branch.
@@ -100,8 +105,9 @@ struct HookeSlider {
     f.normal = touching ? fn : Real(0);
     const Real fn_abs = f.normal < 0 ? -f.normal : f.normal;
     const Real round_off = slip_round_off(c.v_n < 0 ? -c.v_n : c.v_n);
+    const Slider kind = Own == any_own_form ? slider : Slider(Own);  // a constant in a loop's own form
     f.tangent =
-        slider_force(slider, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min), round_off);
+        slider_force(kind, Real(mu) * fn_abs, c.v_t, c.m_eq, c.dt, Real(slip_rate), Real(slip_speed_min), round_off);
     if constexpr (Rolls == RollingForm::spring) {
       const Real w = Real(normal.omega0);
       if (touching) f.torque = rolling.template torque<Rolls>(c, fn_abs, c.m_eq * w * w, hist);
