@@ -20,9 +20,9 @@ namespace sm = spreadmap;
 
 namespace {
 
-// The rolling form in_loop_form chooses for a law, on the CPU (springs) and for the CUDA kernels.
-template <bool Springs, class Law> sm::RollingForm chosen_form(const Law &law) {
-  return sm::in_loop_form<Springs>(law, [](const auto &form) { return std::decay_t<decltype(form)>::rolling; });
+// The rolling form in_loop_form chooses for a law, for the loops of `Forms`.
+template <sm::LoopForms Forms, class Law> sm::RollingForm chosen_form(const Law &law) {
+  return sm::in_loop_form<Forms>(law, [](const auto &form) { return std::decay_t<decltype(form)>::rolling; });
 }
 
 template <class Law> void expect_forms_follow_the_rolling_friction(const nlohmann::json &base) {
@@ -34,13 +34,17 @@ template <class Law> void expect_forms_follow_the_rolling_friction(const nlohman
   const Law none = with({{"rolling_friction", 0.0}}), constant = with({{"rolling_friction", 0.1}}),
             spring = with({{"rolling_friction", 0.1}, {"rolling_model", "epsd"}}),
             spring_off = with({{"rolling_friction", 0.0}, {"rolling_model", "epsd"}});
-  EXPECT_EQ(chosen_form<true>(none), sm::RollingForm::none);
-  EXPECT_EQ(chosen_form<true>(constant), sm::RollingForm::constant);
-  EXPECT_EQ(chosen_form<true>(spring), sm::RollingForm::spring);
-  EXPECT_EQ(chosen_form<true>(spring_off), sm::RollingForm::none) << "epsd at mu_r = 0 has no spring";
+  using sm::LoopForms;
+  EXPECT_EQ(chosen_form<LoopForms::queues>(none), sm::RollingForm::none);
+  EXPECT_EQ(chosen_form<LoopForms::queues>(constant), sm::RollingForm::constant);
+  EXPECT_EQ(chosen_form<LoopForms::queues>(spring), sm::RollingForm::spring);
+  EXPECT_EQ(chosen_form<LoopForms::queues>(spring_off), sm::RollingForm::none) << "epsd at mu_r = 0: no spring";
+  // the whole-list loops keep the spring and compute the constant torque whatever the friction
+  EXPECT_EQ(chosen_form<LoopForms::whole_list>(none), sm::RollingForm::constant);
+  EXPECT_EQ(chosen_form<LoopForms::whole_list>(spring), sm::RollingForm::spring);
   // the kernels are compiled for the constant torque's form alone, whatever the friction
-  EXPECT_EQ(chosen_form<false>(none), sm::RollingForm::constant);
-  EXPECT_EQ(chosen_form<false>(spring), sm::RollingForm::constant);
+  EXPECT_EQ(chosen_form<LoopForms::kernels>(none), sm::RollingForm::constant);
+  EXPECT_EQ(chosen_form<LoopForms::kernels>(spring), sm::RollingForm::constant);
 }
 
 TEST(ContactLoopForms, TheRollingFrictionChoosesTheForm) {
@@ -125,12 +129,12 @@ TEST(ContactLoopForms, TheSliderIsCompiledIntoHookeSlidersLoopsWithTheSameBits) 
   const char *names[] = {"stick", "viscous", "coulomb"};
   for (int kind = 0; kind < 3; ++kind) {
     const auto law = sm::test::bind_law<sm::HookeSlider>({{"slider", names[kind]}});
-    const int chosen =
-        sm::in_loop_form<true>(law, [](const auto &form) { return std::decay_t<decltype(form)>::own_form; });
-    EXPECT_EQ(chosen, kind) << names[kind];
-    const int kernels =
-        sm::in_loop_form<false>(law, [](const auto &form) { return std::decay_t<decltype(form)>::own_form; });
-    EXPECT_EQ(kernels, sm::any_own_form) << "the CUDA kernels read the slider per contact";
+    auto own_form = [&]<sm::LoopForms Forms>() {
+      return sm::in_loop_form<Forms>(law, [](const auto &form) { return std::decay_t<decltype(form)>::own_form; });
+    };
+    EXPECT_EQ(own_form.template operator()<sm::LoopForms::queues>(), kind) << names[kind];
+    EXPECT_EQ(own_form.template operator()<sm::LoopForms::whole_list>(), sm::any_own_form) << "read per contact";
+    EXPECT_EQ(own_form.template operator()<sm::LoopForms::kernels>(), sm::any_own_form) << "read per contact";
   }
   expect_own_form_keeps_the_bits<0>(sm::test::bind_law<sm::HookeSlider>({{"slider", "stick"}}));
   expect_own_form_keeps_the_bits<1>(sm::test::bind_law<sm::HookeSlider>({{"slider", "viscous"}}));

@@ -169,7 +169,7 @@ template <class Law, class Real = double> class Integrator {
                       Real(dt_),
                       Real(t_)};
     PairList<Real> list{start_.data(), nbr_.data(), pair_hist_.data()};
-    in_loop_form(law_, [&](const auto &form) {
+    in_loop_form<LoopForms::whole_list>(law_, [&](const auto &form) {
       for (std::uint32_t i = 0; i < p.n; ++i) pair_forces_on(form, p, list, i);
     });
     for (std::size_t k = 0; k < walls_.size(); ++k) {
@@ -189,7 +189,7 @@ template <class Law, class Real = double> class Integrator {
                            w_vz_.data(),
                            wall_hist_[k].data()};
       w.gap = Real(1);  // the records hold every gap exactly: a law reaching across one sees it up to its range
-      in_loop_form(law_, [&](const auto &form) {
+      in_loop_form<LoopForms::whole_list>(law_, [&](const auto &form) {
         for (std::uint32_t i = 0; i < w.n; ++i) wall_force_on(form, p, w, i);
       });
     }

@@ -378,11 +378,18 @@ template <int Forms, class With> decltype(auto) with_own_form(int form, With &&w
 }
 }  // namespace detail
 
+// The forms a loop is compiled for: every form (the queues of the CPU engine, where the time goes); the
+// rolling spring's and the constant torque's without own forms (the whole-list loops, which only hosts
+// before ABI 10.3 and the tests' reference loops call); the constant torque's alone, without own forms
+// (the CUDA kernels, which keep the law's own history: the host steps a scene with a spring on the CPU).
+// The fewer forms, the shorter a plugin's build; the forms left out read the choice per contact, with
+// the same bits.
+enum class LoopForms { queues, whole_list, kernels };
+
 // Calls run(law as the loops take it): LoopForm<Law, cohesion on?, its rolling form, its own form> for a
-// law with any of them, else the law. Springs false: only the constant torque's form, whatever the
-// rolling friction, and no own form (the CUDA kernels, which keep the law's own history; the host steps
-// a scene with a spring on the CPU), so that the kernels are compiled for two forms, not a dozen.
-template <bool Springs = true, class Law, class Run> decltype(auto) in_loop_form(const Law &law, Run &&run) {
+// law with any of them, else the law.
+template <LoopForms Forms = LoopForms::queues, class Law, class Run>
+decltype(auto) in_loop_form(const Law &law, Run &&run) {
   if constexpr (HasCohesion<Law> || HasRolling<Law> || HasOwnForms<Law>) {
     bool cohesive = false;
     if constexpr (HasCohesion<Law>) cohesive = law.cohesion.on;
@@ -392,13 +399,14 @@ template <bool Springs = true, class Law, class Run> decltype(auto) in_loop_form
           if (cohesive) return run(LoopForm<Law, true, Rolls, Own>{law});
         return run(LoopForm<Law, false, Rolls, Own>{law});
       };
-      if constexpr (Springs && HasOwnForms<Law>) return detail::with_own_form<Law::own_forms>(law.own_form(), own);
+      if constexpr (Forms == LoopForms::queues && HasOwnForms<Law>)
+        return detail::with_own_form<Law::own_forms>(law.own_form(), own);
       else return own.template operator()<any_own_form>();
     };
-    if constexpr (Springs && HasRolling<Law>) {
+    if constexpr (Forms != LoopForms::kernels && HasRolling<Law>)
       if (law.rolling.spring) return with.template operator()<RollingForm::spring>();
+    if constexpr (Forms == LoopForms::queues && HasRolling<Law>)
       if (!(law.rolling.mu_r > 0)) return with.template operator()<RollingForm::none>();
-    }
     return with.template operator()<RollingForm::constant>();
   } else {
     return run(law);
@@ -417,12 +425,12 @@ template <class Law> struct ContactOps {
   }
   // The whole-list loops of hosts before ABI 10.3 (on the caller's thread; they share no work).
   template <class Real> static void pairs(const void *s, const Particles<Real> *p, const PairList<Real> *l) {
-    in_loop_form(law(s), [&](const auto &form) {
+    in_loop_form<LoopForms::whole_list>(law(s), [&](const auto &form) {
       for (std::uint32_t i = 0; i < p->n; ++i) pair_forces_on(form, *p, *l, i);
     });
   }
   template <class Real> static void walls(const void *s, const Particles<Real> *p, const WallContacts<Real> *w) {
-    in_loop_form(law(s), [&](const auto &form) {
+    in_loop_form<LoopForms::whole_list>(law(s), [&](const auto &form) {
       for (std::uint32_t i = 0; i < w->n; ++i) wall_force_on(form, *p, *w, i);
     });
   }

@@ -64,14 +64,14 @@ template <class Law> struct ContactCudaOps {
   template <class Real>
   static int pairs(const void *s, const Particles<Real> *p, const PairList<Real> *l, const sm_cuda_launch_v1 *at,
                    sm_error *err) {
-    return in_loop_form<false>(law(s), [&](const auto &form) {
+    return in_loop_form<LoopForms::kernels>(law(s), [&](const auto &form) {
       return launch(pair_kernel<std::decay_t<decltype(form)>, Real>, p->n, at, err, form, *p, *l);
     });
   }
   template <class Real>
   static int walls(const void *s, const Particles<Real> *p, const WallContacts<Real> *w, const sm_cuda_launch_v1 *at,
                    sm_error *err) {
-    return in_loop_form<false>(law(s), [&](const auto &form) {
+    return in_loop_form<LoopForms::kernels>(law(s), [&](const auto &form) {
       return launch(wall_kernel<std::decay_t<decltype(form)>, Real>, w->n, at, err, form, *p, *w);
     });
   }
