@@ -315,7 +315,7 @@ void evaluate_walls(const Law &shared_law, const Particles<Real> &shared_p, cons
 // cohesion or rolling friction runs the law's code without them, the same instructions and bits as a law
 // that never had them (a loop whose lanes all compute a part and drop it still pays for its square roots
 // and divides). The rolling spring adds its history after the law's: history_of(law) per instance.
-// A law may compile a run-time choice of its own into its loops the same way (HookeSlider: its slider):
+// A law may compile a run-time choice of its own into its loops the same way (its slider kind, say):
 // it declares `static constexpr int own_forms` and `int own_form() const` (0 .. own_forms - 1), and its
 // force takes the form as a third parameter, force<Cohesive, Rolls, Own>, where any_own_form means
 // "read the choice per contact" (the law's plain call, and the CUDA kernels).
