@@ -41,6 +41,7 @@
 #include <unistd.h>
 #include <vector>
 
+#include "bench/bench_support.hpp"
 #include "core/files.hpp"
 #include "core/registry.hpp"
 #include <spreadmap/simd.hpp>
@@ -72,63 +73,35 @@ struct Options {
   std::string liggghts_label = "the peers' recorded figure (serial, 2-core machine), NOT measured in this run";
 };
 
-[[noreturn]] void usage(const char *why) {
-  std::fprintf(
-      stderr,
-      "bench_peer_scene: %s\nusage: bench_peer_scene [--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] "
-      "[--steps N] [--repeats R] [--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT] "
-      "[--backend cpu|cuda] [--busy] [--fixed-team]\n",
-      why);
-  std::exit(2);
+[[noreturn]] void usage(const std::string &why) {
+  sm::bench::usage_exit("bench_peer_scene",
+                        "[--workflow FILE] [--heap FILE.vtp] [--save-heap FILE.vtp] [--steps N] [--repeats R] "
+                        "[--threads 1,2] [--skip S] [--omega W] [--liggghts PS --liggghts-label TEXT] "
+                        "[--backend cpu|cuda] [--busy] [--fixed-team]",
+                        why);
 }
 
 Options parse(int argc, char **argv) {
   Options o;
-  for (int k = 1; k < argc; ++k) {
-    const std::string a = argv[k];
-    auto value = [&]() -> std::string {
-      if (k + 1 >= argc) usage(("missing value after " + a).c_str());
-      return argv[++k];
-    };
-    if (a == "--workflow") o.workflow = value();
-    else if (a == "--heap") o.heap = value();
-    else if (a == "--save-heap") o.save_heap = value();
-    else if (a == "--steps") o.steps = std::stoull(value());
-    else if (a == "--skip") o.skip = std::stoull(value());
-    else if (a == "--repeats") o.repeats = std::max(1, std::stoi(value()));
-    else if (a == "--omega") o.omega = std::stod(value());
-    else if (a == "--backend") o.backend = value();
+  for (sm::bench::Args args(argc, argv, usage); args.next();) {
+    const std::string &a = args.flag();
+    if (a == "--workflow") o.workflow = args.value();
+    else if (a == "--heap") o.heap = args.value();
+    else if (a == "--save-heap") o.save_heap = args.value();
+    else if (a == "--steps") o.steps = std::stoull(args.value());
+    else if (a == "--skip") o.skip = std::stoull(args.value());
+    else if (a == "--repeats") o.repeats = std::max(1, std::stoi(args.value()));
+    else if (a == "--omega") o.omega = std::stod(args.value());
+    else if (a == "--backend") o.backend = args.value();
     else if (a == "--busy") o.busy = true;
     else if (a == "--fixed-team") o.fixed_team = true;
-    else if (a == "--liggghts") o.liggghts = std::stod(value());
-    else if (a == "--liggghts-label") o.liggghts_label = value();
-    else if (a == "--threads") {
-      o.threads.clear();
-      std::string list = value();
-      for (std::size_t p = 0; p < list.size();) {
-        const std::size_t q = std::min(list.find(',', p), list.size());
-        o.threads.push_back(std::max(1, std::stoi(list.substr(p, q - p))));
-        p = q + 1;
-      }
-    } else usage(("unknown argument " + a).c_str());
+    else if (a == "--liggghts") o.liggghts = std::stod(args.value());
+    else if (a == "--liggghts-label") o.liggghts_label = args.value();
+    else if (a == "--threads") o.threads = sm::bench::counts_in(args.value());
+    else usage("unknown argument " + a);
   }
   if (o.threads.empty() || o.steps == 0) usage("need at least one thread count and one step");
   return o;
-}
-
-std::string first_line_of(const char *file, const char *key) {
-  std::ifstream in(file);
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(key, 0) == 0) return line.substr(line.find(':') + 2);
-  return "unknown";
-}
-
-std::string load_average() {
-  std::ifstream in("/proc/loadavg");
-  std::string a, b, c;
-  in >> a >> b >> c;
-  return a + " " + b + " " + c;
 }
 
 // CPU time of the whole process [s]: with one thread, the time it ran, whatever else the machine did.
@@ -224,8 +197,8 @@ int main(int argc, char **argv) {
       "bench_peer_scene: the spreading scene of %s, double precision, dt = %.3g s, omega = %g rad/s, backend %s\n",
       opt.workflow.filename().c_str(), dt, opt.omega, opt.backend.c_str());
   std::printf("machine: %s, %u hardware threads (OpenMP sees %d processors); load average at start %s\n",
-              first_line_of("/proc/cpuinfo", "model name").c_str(), std::thread::hardware_concurrency(),
-              omp_get_num_procs(), load_average().c_str());
+              sm::bench::cpu_model().c_str(), std::thread::hardware_concurrency(), omp_get_num_procs(),
+              sm::bench::load_average().c_str());
   std::printf("instruction set of the engine's loops: %s (SPREADMAP_SIMD=base|avx2|avx512 chooses)\n",
               sm::simd_name(sm::simd_level()));
   std::printf(
@@ -297,7 +270,7 @@ int main(int argc, char **argv) {
       identical = identical && t.end_state.size() == reference.size() &&
                   std::memcmp(t.end_state.data(), reference.data(), reference.size() * sizeof(double)) == 0;
 
-  std::printf("\nload average at the end %s\n", load_average().c_str());
+  std::printf("\nload average at the end %s\n", sm::bench::load_average().c_str());
   std::printf("end states of all %d runs bitwise identical (any thread count): %s\n",
               int(opt.threads.size()) * opt.repeats, identical ? "yes" : "NO");
   // the first run's end state hashed: the same heap and steps on another commit should print the same

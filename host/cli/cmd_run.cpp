@@ -37,12 +37,12 @@ void check_cluster_options(const sm::cluster::ClusterOptions &cl, const sm::RunO
     throw sm::InputError(
         "--threads-per-rank is for --executor mpi or slurm (or --case); a local run takes "
         "scene.threads and --jobs");
-  if (opt.jobs != 1 && cl.executor != "local")
+  if (opt.jobs > 1 && cl.executor != "local")
     throw sm::InputError("--jobs is for the local executor; with --executor " + cl.executor +
                          " each rank or array task runs one case at a time (see --threads-per-rank)");
   if (opt.only_case && cl.executor != "local")
     throw sm::InputError("--case runs one case here; it does not go with --executor " + cl.executor);
-  if (opt.only_case && opt.jobs != 1) throw sm::InputError("--case runs one case: --jobs does not apply");
+  if (opt.only_case && opt.jobs > 1) throw sm::InputError("--case runs one case: --jobs does not apply");
   // mpirun -n N without --executor mpi: N copies of the whole run would fill one folder at once
   for (const char *size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
     if (const char *n = std::getenv(size); n && std::atoi(n) > 1 && cl.executor != "mpi")
@@ -63,12 +63,13 @@ int cmd_run(int argc, char **argv) {
   sm::cluster::ClusterOptions cluster;
   std::size_t one_case = 0;
   Common c;
+  const char *jobs_help = "cases run at once (default: 1; when they step on a GPU, one per CPU core: they share it)";
   const std::string only_help = "run only these stages, comma-separated (of " + sm::join(stage_names()) + ")";
   d.add_options()("workflow", po::value(&file)->required(), "workflow file")(
       "only", po::value(&only), only_help.c_str())(
       "force", po::bool_switch(&opt.force), "recompute finished cases and stages")(
       "out", po::value(&out), "run directory (default runs/<workflow name>)")(
-      "jobs,j", po::value(&opt.jobs)->default_value(1), "cases run at once")(
+      "jobs,j", po::value(&opt.jobs)->value_name("N"), jobs_help)(
       "executor", po::value(&cluster.executor)->default_value("local"),
       "where the simulate stage's cases run: local (here, --jobs at once) | mpi (under mpirun: rank 0 hands the "
       "cases to the other ranks) | slurm (a job array per case and a job for the later stages)")(
@@ -90,7 +91,7 @@ int cmd_run(int argc, char **argv) {
     return 0;
   c.apply();
   opt.quiet = c.quiet;
-  if (opt.jobs < 1) throw sm::InputError("--jobs must be at least 1");
+  if (vm.count("jobs") && opt.jobs < 1) throw sm::InputError("--jobs must be at least 1");
   if (vm.count("case")) {
     opt.only_case = one_case;
     opt.case_threads = cluster.threads_per_rank;

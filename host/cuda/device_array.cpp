@@ -23,12 +23,18 @@ void device_free(void *pointer) noexcept {
   if (pointer) cudaFree(pointer);
 }
 
-void copy_to_device(void *device, const void *host, std::size_t bytes) {
-  check(cudaMemcpy(device, host, bytes, cudaMemcpyHostToDevice), "copying to the device");
+void copy_to_device(void *device, const void *host, std::size_t bytes, void *stream) {
+  if (!stream) return check(cudaMemcpy(device, host, bytes, cudaMemcpyHostToDevice), "copying to the device");
+  const auto s = static_cast<cudaStream_t>(stream);
+  check(cudaMemcpyAsync(device, host, bytes, cudaMemcpyHostToDevice, s), "copying to the device");
+  check(cudaStreamSynchronize(s), "copying to the device");
 }
 
-void copy_to_host(void *host, const void *device, std::size_t bytes) {
-  check(cudaMemcpy(host, device, bytes, cudaMemcpyDeviceToHost), "copying from the device");
+void copy_to_host(void *host, const void *device, std::size_t bytes, void *stream) {
+  if (!stream) return check(cudaMemcpy(host, device, bytes, cudaMemcpyDeviceToHost), "copying from the device");
+  const auto s = static_cast<cudaStream_t>(stream);
+  check(cudaMemcpyAsync(host, device, bytes, cudaMemcpyDeviceToHost, s), "copying from the device");
+  check(cudaStreamSynchronize(s), "copying from the device");
 }
 
 void synchronize(int device, const std::string &doing) {

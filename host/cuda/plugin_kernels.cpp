@@ -37,8 +37,6 @@ void raise(const std::string &id, const sm_error &err) {
                    " on the GPU: " + (err.text[0] ? err.text : "the kernel launch failed without saying why"));
 }
 
-sm_cuda_launch_v1 on(int device) { return {device, nullptr}; }
-
 }  // namespace
 
 ContactKernels contact_kernels(const LoadedPlugin &plugin) {
@@ -61,9 +59,9 @@ GeometryKernels spreader_kernels(const LoadedPlugin &plugin) {
 
 template <class Real>
 void launch_pairs(const ContactKernels &k, const void *law, const Particles<Real> &p, const PairList<Real> &list,
-                  int device) {
+                  int device, void *stream) {
   sm_error err{0, {0}};
-  const sm_cuda_launch_v1 at = on(device);
+  const sm_cuda_launch_v1 at{device, stream};
   int rc;
   if constexpr (std::is_same_v<Real, double>) rc = k.ops->pairs_f64(law, &p, &list, &at, &err);
   else rc = k.ops->pairs_f32(law, &p, &list, &at, &err);
@@ -72,9 +70,9 @@ void launch_pairs(const ContactKernels &k, const void *law, const Particles<Real
 
 template <class Real>
 void launch_walls(const ContactKernels &k, const void *law, const Particles<Real> &p, const WallContacts<Real> &w,
-                  int device) {
+                  int device, void *stream) {
   sm_error err{0, {0}};
-  const sm_cuda_launch_v1 at = on(device);
+  const sm_cuda_launch_v1 at{device, stream};
   int rc;
   if constexpr (std::is_same_v<Real, double>) rc = k.ops->walls_f64(law, &p, &w, &at, &err);
   else rc = k.ops->walls_f32(law, &p, &w, &at, &err);
@@ -83,9 +81,9 @@ void launch_walls(const ContactKernels &k, const void *law, const Particles<Real
 
 template <class Real>
 void launch_geometry(const GeometryKernels &k, const void *geometry, const Particles<Real> &p,
-                     const WallContacts<Real> &w, int device) {
+                     const WallContacts<Real> &w, int device, void *stream) {
   sm_error err{0, {0}};
-  const sm_cuda_launch_v1 at = on(device);
+  const sm_cuda_launch_v1 at{device, stream};
   int rc;
   if constexpr (std::is_same_v<Real, double>) rc = k.ops->contacts_f64(geometry, &p, &w, &at, &err);
   else rc = k.ops->contacts_f32(geometry, &p, &w, &at, &err);
@@ -93,16 +91,16 @@ void launch_geometry(const GeometryKernels &k, const void *geometry, const Parti
 }
 
 template void launch_pairs<double>(const ContactKernels &, const void *, const Particles<double> &,
-                                   const PairList<double> &, int);
+                                   const PairList<double> &, int, void *);
 template void launch_pairs<float>(const ContactKernels &, const void *, const Particles<float> &,
-                                  const PairList<float> &, int);
+                                  const PairList<float> &, int, void *);
 template void launch_walls<double>(const ContactKernels &, const void *, const Particles<double> &,
-                                   const WallContacts<double> &, int);
+                                   const WallContacts<double> &, int, void *);
 template void launch_walls<float>(const ContactKernels &, const void *, const Particles<float> &,
-                                  const WallContacts<float> &, int);
+                                  const WallContacts<float> &, int, void *);
 template void launch_geometry<double>(const GeometryKernels &, const void *, const Particles<double> &,
-                                      const WallContacts<double> &, int);
+                                      const WallContacts<double> &, int, void *);
 template void launch_geometry<float>(const GeometryKernels &, const void *, const Particles<float> &,
-                                     const WallContacts<float> &, int);
+                                     const WallContacts<float> &, int, void *);
 
 }  // namespace spreadmap::cuda

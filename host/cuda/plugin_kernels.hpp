@@ -23,16 +23,17 @@ struct GeometryKernels {
 ContactKernels contact_kernels(const LoadedPlugin &plugin);
 GeometryKernels spreader_kernels(const LoadedPlugin &plugin);
 
-// Enqueue one kernel on `device` (views hold device pointers; `law`/`geometry` is the bound instance
-// in host memory). They do not wait; synchronize() (device_array.hpp) does, and reports kernel faults.
+// Enqueue one kernel on `device`, on `stream` (a cudaStream_t; null: the device's default stream).
+// Views hold device pointers; `law`/`geometry` is the bound instance in host memory. They do not
+// wait; synchronize() (device_array.hpp) does, and reports kernel faults.
 template <class Real>
 void launch_pairs(const ContactKernels &k, const void *law, const Particles<Real> &p, const PairList<Real> &list,
-                  int device = 0);
+                  int device = 0, void *stream = nullptr);
 template <class Real>
 void launch_walls(const ContactKernels &k, const void *law, const Particles<Real> &p, const WallContacts<Real> &w,
-                  int device = 0);
+                  int device = 0, void *stream = nullptr);
 template <class Real>
 void launch_geometry(const GeometryKernels &k, const void *geometry, const Particles<Real> &p,
-                     const WallContacts<Real> &w, int device = 0);
+                     const WallContacts<Real> &w, int device = 0, void *stream = nullptr);
 
 }  // namespace spreadmap::cuda

@@ -210,6 +210,23 @@ __global__ void deep_wall_kernel(const Real *overlap, const Real *r, Real limit,
   add_report(out, 0.0, 0, 0, i < n && overlap[i] > limit * 2 * r[i] ? 1u : 0u);
 }
 
+// A stepper's own stream. Non-blocking: cases that step at once on one GPU, each from a thread of the
+// simulate stage's pool, wait neither for one another nor for the legacy default stream.
+class Stream {
+ public:
+  explicit Stream(int device) {
+    select_device(device);
+    ok(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking), "creating a CUDA stream");
+  }
+  Stream(const Stream &) = delete;
+  Stream &operator=(const Stream &) = delete;
+  ~Stream() { cudaStreamDestroy(stream_); }  // its work finishes first
+  operator cudaStream_t() const { return stream_; }
+
+ private:
+  cudaStream_t stream_ = nullptr;
+};
+
 // Device copies of one wall slot's records and history.
 template <class Real> struct DeviceSlot {
   DeviceArray<Real> a[7], hist, scratch;  // overlap, nx, ny, nz, vx, vy, vz
@@ -222,8 +239,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   using State = engine::StepState<Real>;
 
  public:
-  ResidentStepper(ResidentLaws laws, int device) : laws_(std::move(laws)), device_(device) {
-    select_device(device_);
+  ResidentStepper(ResidentLaws laws, int device) : laws_(std::move(laws)), device_(device), stream_(device) {
     report_.resize(1);
     bounds_.resize(1);
   }
@@ -239,13 +255,13 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     p.for_each_real([&](std::vector<Real> &c) {
       if (real_.size() <= k) real_.emplace_back();
       real_column_[&c] = k;
-      real_[k++].upload(c.data(), c.size());
+      real_[k++].upload(c.data(), c.size(), stream_);
     });
     k = 0;
     p.for_each_index([&](std::vector<std::uint32_t> &c) {
       if (index_.size() <= k) index_.emplace_back();
       index_column_[&c] = k;
-      index_[k++].upload(c.data(), c.size());
+      index_[k++].upload(c.data(), c.size(), stream_);
     });
     auto &list = state.list;
     // The kernels keep each law's own history; a rolling spring (rolling_model: epsd) adds to it on the
@@ -260,9 +276,9 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
                        "or rolling_model: constant");
     history_ = laws_.pair.ops->history;
     if (state.list_valid && list.start.size() == std::size_t(n_) + 1) {
-      start_.upload(list.start.data(), list.start.size());
-      nbr_.upload(list.nbr.data(), list.nbr.size());
-      hist_.upload(list.hist.data(), list.hist.size());
+      start_.upload(list.start.data(), list.start.size(), stream_);
+      nbr_.upload(list.nbr.data(), list.nbr.size(), stream_);
+      hist_.upload(list.hist.data(), list.hist.size(), stream_);
     } else {
       state.list_valid = false;
     }
@@ -271,8 +287,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     std::size_t s = 0;
     auto put = [&](auto &slot) {
       const std::vector<Real> *from[7] = {&slot.overlap, &slot.nx, &slot.ny, &slot.nz, &slot.vx, &slot.vy, &slot.vz};
-      for (int q = 0; q < 7; ++q) slots_[s].a[q].upload(from[q]->data(), from[q]->size());
-      slots_[s].hist.upload(slot.hist.data(), slot.hist.size());
+      for (int q = 0; q < 7; ++q) slots_[s].a[q].upload(from[q]->data(), from[q]->size(), stream_);
+      slots_[s].hist.upload(slot.hist.data(), slot.hist.size(), stream_);
       ++s;
     };
     for (auto &pl : state.planes) put(pl.slot);
@@ -282,21 +298,21 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   void download(State &state) override {
     select_device(device_);
     auto &p = state.particles;
-    p.for_each_real([&](std::vector<Real> &c) { real_[real_column_.at(&c)].download(c.data()); });
-    p.for_each_index([&](std::vector<std::uint32_t> &c) { index_[index_column_.at(&c)].download(c.data()); });
+    p.for_each_real([&](std::vector<Real> &c) { real_[real_column_.at(&c)].download(c.data(), stream_); });
+    p.for_each_index([&](std::vector<std::uint32_t> &c) { index_[index_column_.at(&c)].download(c.data(), stream_); });
     auto &list = state.list;
     list.start.resize(start_.size());
     list.nbr.resize(nbr_.size());
     list.hist.resize(hist_.size());
-    start_.download(list.start.data());
-    nbr_.download(list.nbr.data());
-    hist_.download(list.hist.data());
+    start_.download(list.start.data(), stream_);
+    nbr_.download(list.nbr.data(), stream_);
+    hist_.download(list.hist.data(), stream_);
     list.restore_mirror(state.pairs_once());
     std::size_t s = 0;
     auto get = [&](auto &slot) {
       std::vector<Real> *to[7] = {&slot.overlap, &slot.nx, &slot.ny, &slot.nz, &slot.vx, &slot.vy, &slot.vz};
-      for (int q = 0; q < 7; ++q) slots_[s].a[q].download(to[q]->data());
-      slots_[s].hist.download(slot.hist.data());
+      for (int q = 0; q < 7; ++q) slots_[s].a[q].download(to[q]->data(), stream_);
+      slots_[s].hist.download(slot.hist.data(), stream_);
       ++s;
     };
     for (auto &pl : state.planes) get(pl.slot);
@@ -357,11 +373,11 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
   }
 
   template <class Launch> PassReport run_reported(Launch &&launch, const char *what) {
-    ok(cudaMemset(report_.data(), 0, sizeof(PassReport)), "clearing the step report");
+    ok(cudaMemsetAsync(report_.data(), 0, sizeof(PassReport), stream_), "clearing the step report");
     launch(report_.data());
     ok(cudaGetLastError(), what);
     PassReport r;
-    ok(cudaMemcpy(&r, report_.data(), sizeof r, cudaMemcpyDeviceToHost), what);
+    copy_to_host(&r, report_.data(), sizeof r, stream_);
     return r;
   }
 
@@ -388,7 +404,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     if (n_ == 0) return;
     engine::with_flags(
         [&]<bool PX, bool PY, bool PZ, bool Rotate>() {
-          kick_drift_kernel<Real, PX, PY, PZ, Rotate><<<blocks_for(n_), block_size>>>(k, n_, out);
+          kick_drift_kernel<Real, PX, PY, PZ, Rotate><<<blocks_for(n_), block_size, 0, stream_>>>(k, n_, out);
         },
         k.periodic[0], k.periodic[1], k.periodic[2], k.rotate);
   }
@@ -396,7 +412,9 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     const engine::KickDrift<Real> k = kick_view(state, half, Real(state.dt));
     if (n_ == 0) return;
     engine::with_flags(
-        [&]<bool Rotate>() { kick_check_kernel<Real, Rotate><<<blocks_for(n_), block_size>>>(k, limit2, n_, out); },
+        [&]<bool Rotate>() {
+          kick_check_kernel<Real, Rotate><<<blocks_for(n_), block_size, 0, stream_>>>(k, limit2, n_, out);
+        },
         k.rotate);
   }
 
@@ -413,15 +431,18 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     if (n_ == 0) return;
     auto &p = state.particles;
     const Real limit = Real(state.settings.overlap_limit);
-    deep_pairs_kernel<Real><<<blocks_for(n_), block_size>>>(list_args(state), start_.data(), nbr_.data(), limit, out);
+    deep_pairs_kernel<Real>
+        <<<blocks_for(n_), block_size, 0, stream_>>>(list_args(state), start_.data(), nbr_.data(), limit, out);
     std::size_t s = 0;
     for (auto &pl : state.planes) {
       if (pl.wall.active)
-        deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(p.r), limit, n_, out);
+        deep_wall_kernel<Real>
+            <<<blocks_for(n_), block_size, 0, stream_>>>(slots_[s].a[0].data(), col(p.r), limit, n_, out);
       ++s;
     }
     for (std::size_t g = 0; g < state.geometries.size(); ++g, ++s)
-      deep_wall_kernel<Real><<<blocks_for(n_), block_size>>>(slots_[s].a[0].data(), col(p.r), limit, n_, out);
+      deep_wall_kernel<Real>
+          <<<blocks_for(n_), block_size, 0, stream_>>>(slots_[s].a[0].data(), col(p.r), limit, n_, out);
   }
 
   // The engine's rebuild_list, on the device: bounds, grid (the same host function), cells, a stable
@@ -438,15 +459,16 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     state.list_valid = true;
     if (n_ == 0) {
       const std::uint32_t zero = 0;
-      start_.upload(&zero, 1);
+      start_.upload(&zero, 1, stream_);
       nbr_.resize(0);
       hist_.resize(0);
       return;
     }
     Bounds b{{~0ull, ~0ull, ~0ull}, {0, 0, 0}, 0};
-    ok(cudaMemcpy(bounds_.data(), &b, sizeof b, cudaMemcpyHostToDevice), "the bounding box");
-    bounds_kernel<Real><<<blocks_for(n_), block_size>>>(col(p.x), col(p.y), col(p.z), col(p.r), n_, bounds_.data());
-    ok(cudaMemcpy(&b, bounds_.data(), sizeof b, cudaMemcpyDeviceToHost), "the bounding box");
+    copy_to_device(bounds_.data(), &b, sizeof b, stream_);
+    bounds_kernel<Real>
+        <<<blocks_for(n_), block_size, 0, stream_>>>(col(p.x), col(p.y), col(p.z), col(p.r), n_, bounds_.data());
+    copy_to_host(&b, bounds_.data(), sizeof b, stream_);
     double lo[3], hi[3];
     for (int a = 0; a < 3; ++a) lo[a] = from_ordered(b.lo[a]), hi[a] = from_ordered(b.hi[a]);
     const double reach = 2 * from_ordered(b.r_max) + state.skin;
@@ -460,17 +482,17 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
 
     // a stable sort by cell: the permutation of the CPU's stable counting sort
     cell_.resize(n_), cell_sorted_.resize(n_), perm_in_.resize(n_), perm_.resize(n_);
-    cell_kernel<Real>
-        <<<blocks_for(n_), block_size>>>(grid_, col(p.x), col(p.y), col(p.z), n_, cell_.data(), perm_in_.data());
+    cell_kernel<Real><<<blocks_for(n_), block_size, 0, stream_>>>(grid_, col(p.x), col(p.y), col(p.z), n_, cell_.data(),
+                                                                  perm_in_.data());
     int bits = 1;
     while (bits < 32 && (std::size_t(1) << bits) < cells) ++bits;
     std::size_t temp_bytes = 0;
     ok(cub::DeviceRadixSort::SortPairs(nullptr, temp_bytes, cell_.data(), cell_sorted_.data(), perm_in_.data(),
-                                       perm_.data(), int(n_), 0, bits),
+                                       perm_.data(), int(n_), 0, bits, stream_),
        "sizing the sort by cell");
     temp_.resize(temp_bytes);
     ok(cub::DeviceRadixSort::SortPairs(temp_.data(), temp_bytes, cell_.data(), cell_sorted_.data(), perm_in_.data(),
-                                       perm_.data(), int(n_), 0, bits),
+                                       perm_.data(), int(n_), 0, bits, stream_),
        "sorting the particles by cell");
     for (auto &c : real_) gather(c, 1);
     for (auto &c : index_) gather(c, 1);
@@ -478,8 +500,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
 
     // cell ranges
     counts_.resize(cells + 1);
-    ok(cudaMemset(counts_.data(), 0, (cells + 1) * sizeof(std::uint32_t)), "counting the cells");
-    count_cells_kernel<<<blocks_for(n_), block_size>>>(cell_sorted_.data(), n_, counts_.data());
+    ok(cudaMemsetAsync(counts_.data(), 0, (cells + 1) * sizeof(std::uint32_t), stream_), "counting the cells");
+    count_cells_kernel<<<blocks_for(n_), block_size, 0, stream_>>>(cell_sorted_.data(), n_, counts_.data());
     cell_start_.resize(cells + 1);
     exclusive_sum(counts_, cell_start_, cells + 1, "the cell ranges");
 
@@ -489,23 +511,26 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     std::swap(hist_, old_hist_);
     const ListArgs<Real> args = list_args(state);
     counts_.resize(std::size_t(n_) + 1);
-    ok(cudaMemset(counts_.data(), 0, (std::size_t(n_) + 1) * sizeof(std::uint32_t)), "counting the neighbours");
-    list_count_kernel<Real><<<blocks_for(n_), block_size>>>(args, counts_.data());
+    ok(cudaMemsetAsync(counts_.data(), 0, (std::size_t(n_) + 1) * sizeof(std::uint32_t), stream_),
+       "counting the neighbours");
+    list_count_kernel<Real><<<blocks_for(n_), block_size, 0, stream_>>>(args, counts_.data());
     start_.resize(std::size_t(n_) + 1);
     exclusive_sum(counts_, start_, std::size_t(n_) + 1, "the list offsets");
     std::uint32_t entries = 0;
-    ok(cudaMemcpy(&entries, start_.data() + n_, sizeof entries, cudaMemcpyDeviceToHost), "the list length");
+    copy_to_host(&entries, start_.data() + n_, sizeof entries, stream_);
     nbr_.resize(entries);
     hist_.resize(std::size_t(entries) * history_);
-    if (hist_.size() > 0) ok(cudaMemset(hist_.data(), 0, hist_.size() * sizeof(Real)), "clearing the history");
-    if (entries > 0) list_fill_kernel<Real><<<blocks_for(n_), block_size>>>(args, start_.data(), nbr_.data());
+    if (hist_.size() > 0)
+      ok(cudaMemsetAsync(hist_.data(), 0, hist_.size() * sizeof(Real), stream_), "clearing the history");
+    if (entries > 0)
+      list_fill_kernel<Real><<<blocks_for(n_), block_size, 0, stream_>>>(args, start_.data(), nbr_.data());
     const std::size_t old_n = old_start_.size() > 0 ? old_start_.size() - 1 : 0;
     if (history_ > 0 && old_nbr_.size() > 0)
-      carry_kernel<Real><<<blocks_for(n_), block_size>>>(icol(p.list_index), std::uint32_t(old_n), start_.data(),
-                                                         nbr_.data(), hist_.data(), old_start_.data(), old_nbr_.data(),
-                                                         old_hist_.data(), history_, n_);
-    after_build_kernel<Real><<<blocks_for(n_), block_size>>>(col(p.x), col(p.y), col(p.z), col(p.x0), col(p.y0),
-                                                             col(p.z0), icol(p.list_index), n_);
+      carry_kernel<Real><<<blocks_for(n_), block_size, 0, stream_>>>(
+          icol(p.list_index), std::uint32_t(old_n), start_.data(), nbr_.data(), hist_.data(), old_start_.data(),
+          old_nbr_.data(), old_hist_.data(), history_, n_);
+    after_build_kernel<Real><<<blocks_for(n_), block_size, 0, stream_>>>(col(p.x), col(p.y), col(p.z), col(p.x0),
+                                                                         col(p.y0), col(p.z0), icol(p.list_index), n_);
     ok(cudaGetLastError(), "rebuilding the neighbour list");
   }
 
@@ -513,7 +538,8 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     if (c.size() == 0 || stride == 0) return;
     DeviceArray<T> &out = scratch_for(c);
     out.resize(c.size());
-    gather_kernel<T><<<blocks_for(n_), block_size>>>(c.data(), out.data(), perm_.data(), n_, unsigned(stride));
+    gather_kernel<T>
+        <<<blocks_for(n_), block_size, 0, stream_>>>(c.data(), out.data(), perm_.data(), n_, unsigned(stride));
     std::swap(c, out);
   }
   DeviceArray<Real> &scratch_for(DeviceArray<Real> &) { return scratch_real_; }
@@ -521,9 +547,9 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
 
   void exclusive_sum(DeviceArray<std::uint32_t> &in, DeviceArray<std::uint32_t> &out, std::size_t n, const char *what) {
     std::size_t temp_bytes = 0;
-    ok(cub::DeviceScan::ExclusiveSum(nullptr, temp_bytes, in.data(), out.data(), int(n)), what);
+    ok(cub::DeviceScan::ExclusiveSum(nullptr, temp_bytes, in.data(), out.data(), int(n), stream_), what);
     temp_.resize(temp_bytes);
-    ok(cub::DeviceScan::ExclusiveSum(temp_.data(), temp_bytes, in.data(), out.data(), int(n)), what);
+    ok(cub::DeviceScan::ExclusiveSum(temp_.data(), temp_bytes, in.data(), out.data(), int(n), stream_), what);
   }
 
   // Every force and torque of the step: pairs, planes and geometries, in the CPU's order.
@@ -532,7 +558,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     state.forces_valid = true;
     if (n_ == 0) return;
     for (std::vector<Real> *c : {&p.fx, &p.fy, &p.fz, &p.tx, &p.ty, &p.tz})
-      ok(cudaMemset(col(*c), 0, std::size_t(n_) * sizeof(Real)), "clearing the force accumulators");
+      ok(cudaMemsetAsync(col(*c), 0, std::size_t(n_) * sizeof(Real), stream_), "clearing the force accumulators");
     const auto &d = state.domain;
     Particles<Real> v{n_,        col(p.x),  col(p.y), col(p.z), col(p.vx), col(p.vy),      col(p.vz),       col(p.wx),
                       col(p.wy), col(p.wz), col(p.r), col(p.m), col(p.fx), col(p.fy),      col(p.fz),       col(p.tx),
@@ -543,7 +569,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       v.periodic[a] = d.periodic[a] ? 1 : 0;
     }
     const PairList<Real> list{start_.data(), nbr_.data(), hist_.data()};
-    launch_pairs(laws_.pair, state.pair_law.self, v, list, device_);
+    launch_pairs(laws_.pair, state.pair_law.self, v, list, device_, stream_);
     std::size_t s = 0;
     auto &planes = state.planes;
     for (std::size_t k = 0; k < planes.size(); ++k, ++s) {
@@ -553,22 +579,23 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       for (int a = 0; a < 3; ++a)
         pl.point[a] = Real(wall.point[a]), pl.normal[a] = Real(wall.normal[a]), pl.velocity[a] = Real(wall.velocity[a]);
       const WallContacts<Real> w = slots_[s].view(n_);
-      plane_kernel<Real><<<blocks_for(n_), block_size>>>(pl, col(p.x), col(p.y), col(p.z), col(p.r), n_, w);
-      launch_walls(laws_.planes.at(k), wall.law.self, v, w, device_);
+      plane_kernel<Real><<<blocks_for(n_), block_size, 0, stream_>>>(pl, col(p.x), col(p.y), col(p.z), col(p.r), n_, w);
+      launch_walls(laws_.planes.at(k), wall.law.self, v, w, device_, stream_);
     }
     auto &geometries = state.geometries;
     for (std::size_t k = 0; k < geometries.size(); ++k, ++s) {
       const WallContacts<Real> w = slots_[s].view(n_);
       Particles<Real> at = v;  // the geometry's own clock (engine/walls.hpp)
       at.t = Real(state.time + geometries[k].geometry.time_shift);
-      launch_geometry(laws_.geometries.at(k).first, geometries[k].geometry.self, at, w, device_);
-      launch_walls(laws_.geometries.at(k).second, geometries[k].geometry.law.self, v, w, device_);
+      launch_geometry(laws_.geometries.at(k).first, geometries[k].geometry.self, at, w, device_, stream_);
+      launch_walls(laws_.geometries.at(k).second, geometries[k].geometry.law.self, v, w, device_, stream_);
     }
     ok(cudaGetLastError(), "the contact forces");
   }
 
   ResidentLaws laws_;
   int device_;
+  Stream stream_;  // every kernel, copy and sort of this stepper, and the plugins' kernels it launches
   std::uint32_t n_ = 0;
   unsigned history_ = 0;
   std::vector<DeviceArray<Real>> real_;

@@ -10,6 +10,11 @@
 // the order of the CPU's stable counting sort, so the list, every particle's order of summation, and
 // therefore every bit of the result equal the CPU backend's (tests/gpu: engine_backends_test).
 //
+// Each stepper runs on its own CUDA stream, so several cases step at once on one GPU, each from its
+// own host thread (the simulate stage's pool): a small case no longer leaves the device idle while
+// its host thread launches and waits. Each case's kernels and data are its own, so its bits are
+// those it has alone (tests/gpu: engine_batch_test).
+//
 // Not on the GPU: sleeping particles (refused with a clear error). Rare events (removing the
 // particles that left the domain, at the list build after they left; a run-time check firing)
 // bring the state to the host, are handled there by the engine's own code, and the state goes back.

@@ -10,32 +10,16 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "gpu/gpu_support.hpp"
-#include "workflow/stage_table.hpp"
+#include "gpu/spreading_scene.hpp"
 #include "workflow/spreading/case_setup.hpp"
-#include "workflow/spreading/scene_section.hpp"
-#include "workflow/file/workflow.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;
 
 namespace {
 
-sm::Scene small_scene(const std::string &precision) {
-  sm::Diagnostics diag;
-  const auto resolved = sm::resolve_scene(
-      sm::load_workflow(fs::path(SPREADMAP_SOURCE_DIR) / "workflows" / "quickstart.yaml", sm::stage_names()), registry(), diag);
-  diag.throw_if_any();
-  sm::Scene scene = *resolved;
-  scene.powder.count = 400;  // a low heap over the preset's 6-13 mm (a 3 mm heap would sit under the roller)
-  scene.powder.settle_time = 0.02;
-  scene.spreader.params["U"] = 0.1;
-  scene.precision = precision == "float" ? sm::Precision::float32 : sm::Precision::float64;
-  return scene;
-}
-
 template <class Real> void backends_agree(const std::string &precision) {
-  sm::Scene scene = small_scene(precision);
+  sm::Scene scene = small_spreading_scene(precision);
   scene.backend = "cpu";
   const auto heap = sm::settle_heap<Real>(scene, registry(), "gpu test", "scene.json");
   auto run = [&](const std::string &backend, std::uint64_t steps) {

@@ -11,3 +11,7 @@ spreadmap_test(gpu engine_backends
   SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_backends_test.cpp
   LIBS spreadmap_workflow spreadmap_cuda)
 add_dependencies(test_gpu_engine_backends plugin_contact_hooke_slider plugin_spreader_roller)
+spreadmap_test(gpu engine_batch
+  SOURCES ${CMAKE_CURRENT_LIST_DIR}/engine_batch_test.cpp
+  LIBS spreadmap_workflow spreadmap_cuda)
+add_dependencies(test_gpu_engine_batch plugin_contact_hooke_slider plugin_spreader_roller)

@@ -146,6 +146,17 @@ TEST(LocalExecutor, ThreadsPerCaseComeFromTheOptionThenTheSceneThenTheCoresShare
   EXPECT_EQ(sm::LocalExecutor(4).threads_for(all, 4 * cores), 1);
 }
 
+TEST(LocalExecutor, WithoutJobsOneCaseRunsOnTheCpuAndOnePerCoreOnTheGpu) {
+  using sm::cuda::Backend;
+  EXPECT_EQ(sm::LocalExecutor::cases_at_once(0, Backend::cpu, 45, 16), 1) << "a CPU case takes every core";
+  EXPECT_EQ(sm::LocalExecutor::cases_at_once(0, Backend::cuda, 45, 16), 16) << "a host thread a case";
+  EXPECT_EQ(sm::LocalExecutor::cases_at_once(0, Backend::cuda, 8, 16), 8) << "never more than the cases";
+  EXPECT_EQ(sm::LocalExecutor::cases_at_once(0, Backend::cuda, 3, 0), 1) << "an unknown core count is one";
+  EXPECT_EQ(sm::LocalExecutor::cases_at_once(3, Backend::cpu, 45, 16), 3) << "--jobs decides when given";
+  EXPECT_EQ(sm::LocalExecutor::cases_at_once(3, Backend::cuda, 2, 16), 2);
+  EXPECT_EQ(sm::LocalExecutor::cases_at_once(0, Backend::cuda, 0, 16), 1);
+}
+
 TEST(LocalExecutor, AFailureIsThrownOnceTheRunningCaseFinishedAndWasRecorded) {
   constexpr int n = 8;
   PoolRun r("spreadmap_pool_failure", n);

@@ -6,6 +6,8 @@
 #include <optional>
 #include <thread>
 
+#include <spdlog/spdlog.h>
+
 #include "core/error.hpp"
 #include "core/stop.hpp"
 #include "workflow/run/progress.hpp"
@@ -16,7 +18,12 @@
 namespace spreadmap {
 
 LocalExecutor::LocalExecutor(int jobs, int threads_per_case, RunJob run)
-    : jobs_(std::max(1, jobs)), threads_per_case_(threads_per_case), run_(std::move(run)) {}
+    : jobs_(std::max(0, jobs)), threads_per_case_(threads_per_case), run_(std::move(run)) {}
+
+int LocalExecutor::cases_at_once(int jobs, cuda::Backend backend, std::size_t cases, unsigned cores) {
+  const std::size_t wanted = jobs > 0 ? std::size_t(jobs) : backend == cuda::Backend::cuda ? std::max(1u, cores) : 1;
+  return int(std::max<std::size_t>(1, std::min(wanted, cases)));
+}
 
 int LocalExecutor::threads_for(const Scene &scene, int running) const {
   if (threads_per_case_ > 0) return threads_per_case_;
@@ -28,7 +35,12 @@ int LocalExecutor::threads_for(const Scene &scene, int running) const {
 void LocalExecutor::run_cases(CaseBatch &batch, StageContext &ctx) {
   if (batch.jobs.empty()) return;
   Progress progress(batch.label, batch.jobs.size(), ctx.options.quiet);
-  const int pool = std::min<int>(jobs_, int(batch.jobs.size()));
+  std::string note;
+  const cuda::Backend backend =
+      jobs_ > 0 ? cuda::Backend::cpu : cuda::choose_backend(batch.jobs.front().request.scene.backend, note);
+  const int pool = cases_at_once(jobs_, backend, batch.jobs.size(), std::thread::hardware_concurrency());
+  if (jobs_ == 0 && pool > 1)
+    spdlog::info("{} cases at once on the GPU, each on its own stream (--jobs sets another number)", pool);
   std::atomic<std::size_t> next{0};
   std::atomic<int> running{0};
   std::mutex failure_mutex;

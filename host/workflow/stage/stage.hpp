@@ -20,7 +20,7 @@ struct Scene;
 struct RunOptions {
   bool force = false;
   bool quiet = false;
-  int jobs = 1;
+  int jobs = 0;                // cases run at once; 0: LocalExecutor::cases_at_once chooses
   std::set<std::string> only;  // empty = all stages
   fs::path out;                // run directory; empty = runs/<name>
   // Where the simulate stage's cases run (workflow/executors/executor_hook.hpp); null: here, in `jobs` threads
