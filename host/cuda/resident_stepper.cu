@@ -372,12 +372,18 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     throw RunFailure("the GPU run stopped at an invalid state");  // report() throws first
   }
 
+  // A small copy on this stepper's stream, waited for: a kernel's fault before it is reported as `what`.
+  void copy(void *to, const void *from, std::size_t bytes, cudaMemcpyKind kind, const char *what) {
+    ok(cudaMemcpyAsync(to, from, bytes, kind, stream_), what);
+    ok(cudaStreamSynchronize(stream_), what);
+  }
+
   template <class Launch> PassReport run_reported(Launch &&launch, const char *what) {
     ok(cudaMemsetAsync(report_.data(), 0, sizeof(PassReport), stream_), "clearing the step report");
     launch(report_.data());
     ok(cudaGetLastError(), what);
     PassReport r;
-    copy_to_host(&r, report_.data(), sizeof r, stream_);
+    copy(&r, report_.data(), sizeof r, cudaMemcpyDeviceToHost, what);
     return r;
   }
 
@@ -465,10 +471,10 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
       return;
     }
     Bounds b{{~0ull, ~0ull, ~0ull}, {0, 0, 0}, 0};
-    copy_to_device(bounds_.data(), &b, sizeof b, stream_);
+    copy(bounds_.data(), &b, sizeof b, cudaMemcpyHostToDevice, "the bounding box");
     bounds_kernel<Real>
         <<<blocks_for(n_), block_size, 0, stream_>>>(col(p.x), col(p.y), col(p.z), col(p.r), n_, bounds_.data());
-    copy_to_host(&b, bounds_.data(), sizeof b, stream_);
+    copy(&b, bounds_.data(), sizeof b, cudaMemcpyDeviceToHost, "the bounding box");
     double lo[3], hi[3];
     for (int a = 0; a < 3; ++a) lo[a] = from_ordered(b.lo[a]), hi[a] = from_ordered(b.hi[a]);
     const double reach = 2 * from_ordered(b.r_max) + state.skin;
@@ -517,7 +523,7 @@ template <class Real> class ResidentStepper final : public engine::StepBackend<R
     start_.resize(std::size_t(n_) + 1);
     exclusive_sum(counts_, start_, std::size_t(n_) + 1, "the list offsets");
     std::uint32_t entries = 0;
-    copy_to_host(&entries, start_.data() + n_, sizeof entries, stream_);
+    copy(&entries, start_.data() + n_, sizeof entries, cudaMemcpyDeviceToHost, "the list length");
     nbr_.resize(entries);
     hist_.resize(std::size_t(entries) * history_);
     if (hist_.size() > 0)
