@@ -98,7 +98,7 @@ class ContactBackends : public ::testing::TestWithParam<LawCase> {
  protected:
   void SetUp() override {
     REQUIRE_CUDA_DEVICE();
-    const auto &plugin = registry().get("contact", GetParam().name);
+    const auto &plugin = built_plugins().get("contact", GetParam().name);
     law_ = sm::PluginInstance(plugin, sm::test::plugin_params(plugin.descriptor, GetParam().params));
     cpu_ = law_.ops<sm::sm_contact_ops_v1>();
     gpu_ = sm::cuda::contact_kernels(plugin);
@@ -193,7 +193,7 @@ TEST_P(SpreaderBackends, ContactRecordsMatchTheCpuInDouble) {
   params["gap"] = top - 0.3e-3;
   params["start"] = middle - 0.05 * 2e-3;  // at the middle at t = 2 ms
   params["U"] = 0.05;
-  const auto &plugin = registry().get("spreader", GetParam().name);
+  const auto &plugin = built_plugins().get("spreader", GetParam().name);
   sm::PluginInstance geometry(plugin, sm::test::plugin_params(plugin.descriptor, params));
   const auto *ops = geometry.ops<sm::sm_spreader_ops_v2>();
   const auto kernels = sm::cuda::spreader_kernels(plugin);

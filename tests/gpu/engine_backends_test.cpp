@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <unistd.h>
 
-#include "gpu/spreading_scene.hpp"
-#include "workflow/spreading/case_setup.hpp"
+#include "gpu/gpu_support.hpp"
+#include "unit/concurrent_cases.hpp"
 
 namespace sm = spreadmap;
 namespace fs = std::filesystem;
@@ -21,11 +21,11 @@ namespace {
 template <class Real> void backends_agree(const std::string &precision) {
   sm::Scene scene = small_spreading_scene(precision);
   scene.backend = "cpu";
-  const auto heap = sm::settle_heap<Real>(scene, registry(), "gpu test", "scene.json");
+  const auto heap = sm::settle_heap<Real>(scene, built_plugins(), "gpu test", "scene.json");
   auto run = [&](const std::string &backend, std::uint64_t steps) {
     sm::Scene s = scene;
     s.backend = backend;
-    auto r = sm::make_spreading_run<Real>(s, registry(), heap, "scene.json");
+    auto r = sm::make_spreading_run<Real>(s, built_plugins(), heap, "scene.json");
     r->sim.run_steps(steps);
     return r;
   };
@@ -46,7 +46,7 @@ template <class Real> void backends_agree(const std::string &precision) {
   half->sim.save_checkpoint(path);
   sm::Scene s = scene;
   s.backend = "cuda";
-  auto resumed = sm::make_spreading_run<Real>(s, registry(), heap, "scene.json");
+  auto resumed = sm::make_spreading_run<Real>(s, built_plugins(), heap, "scene.json");
   resumed->sim.load_checkpoint(path);
   resumed->sim.run_steps(1500);
   fs::remove(path);

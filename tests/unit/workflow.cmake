@@ -14,6 +14,10 @@ target_compile_definitions(test_unit_workflow PRIVATE SPREADMAP_FIXTURE_DIR="${S
 spreadmap_test(unit scene_model SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_scene_model_test.cpp
   ${CMAKE_CURRENT_LIST_DIR}/workflow_spreader_span_test.cpp ${CMAKE_CURRENT_LIST_DIR}/workflow_settle_rule_test.cpp
   LIBS spreadmap_workflow)
+# Cases stepped at once in one process (the pool of --jobs) against each alone, bit for bit.
+spreadmap_test(unit concurrent_cases SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_concurrent_cases_test.cpp
+  LIBS spreadmap_workflow)
+add_dependencies(test_unit_concurrent_cases plugin_contact_hooke_slider plugin_spreader_roller)
 spreadmap_test(unit powder SOURCES ${CMAKE_CURRENT_LIST_DIR}/workflow_powder_test.cpp LIBS spreadmap_workflow)
 add_dependencies(test_unit_powder plugin_contact_hooke_slider plugin_contact_hertz_mindlin plugin_spreader_roller)
 # scene.substrate.roughness: the key, its refusals, and the case set-up's fixed spheres on the plate.
