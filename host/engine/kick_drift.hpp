@@ -35,13 +35,17 @@ template <class Real> struct KickDriftResult {
 };
 
 namespace detail {
+// A count kept per particle in the loops below, as wide as Real: the vectorised loops then count in
+// the lanes of the positions, without packing each step's masks into 32-bit lanes.
+template <class Real> using LaneCount = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+
 template <class Real, bool Periodic>
-SM_HD Real drift_axis(Real pos, Real v, Real dt, Real lo, Real hi, Real len, std::uint32_t &out) {
+SM_HD Real drift_axis(Real pos, Real v, Real dt, Real lo, Real hi, Real len, LaneCount<Real> &out) {
   const Real q = pos + dt * v;
   if constexpr (Periodic) {
     return q >= hi ? q - len : (q < lo ? q + len : q);
   } else {
-    out |= (q >= lo) & (q < hi) ? 0u : 1u;
+    out |= (q >= lo) & (q < hi) ? 0 : 1;
     return q;
   }
 }
@@ -76,9 +80,9 @@ template <class Real, bool Rotate, bool Sleep> SM_HD void half_kick(const KickDr
 
 // What the drift of one particle reports.
 template <class Real> struct Drifted {
-  Real d2;                // squared displacement since the list build
-  std::uint32_t escaped;  // 1: outside an open axis (with a finite position)
-  std::uint32_t nonfinite;
+  Real d2;                  // squared displacement since the list build
+  LaneCount<Real> escaped;  // 1: outside an open axis (with a finite position)
+  LaneCount<Real> nonfinite;
 };
 
 // Drift of particle i after its first half kick: the accumulators cleared (used up), x += dt v,
@@ -90,7 +94,7 @@ template <class Real, bool PX, bool PY, bool PZ> SM_HD Drifted<Real> drift(const
   k.tx[i] = 0;
   k.ty[i] = 0;
   k.tz[i] = 0;
-  std::uint32_t out = 0;
+  LaneCount<Real> out = 0;
   const Real px = drift_axis<Real, PX>(k.x[i], k.vx[i], k.dt, k.lo[0], k.hi[0], k.len[0], out);
   const Real py = drift_axis<Real, PY>(k.y[i], k.vy[i], k.dt, k.lo[1], k.hi[1], k.len[1], out);
   const Real pz = drift_axis<Real, PZ>(k.z[i], k.vz[i], k.dt, k.lo[2], k.hi[2], k.len[2], out);
@@ -99,18 +103,19 @@ template <class Real, bool PX, bool PY, bool PZ> SM_HD Drifted<Real> drift(const
   k.z[i] = pz;
   const Real dx = moved_axis<Real, PX>(px, k.x0[i], k.len[0]), dy = moved_axis<Real, PY>(py, k.y0[i], k.len[1]),
              dz = moved_axis<Real, PZ>(pz, k.z0[i], k.len[2]);
-  const std::uint32_t finite = ((px - px) == 0) & ((py - py) == 0) & ((pz - pz) == 0);  // inf - inf is NaN
-  return {dx * dx + dy * dy + dz * dz, out & finite, 1u - finite};
+  const LaneCount<Real> finite = ((px - px) == 0) & ((py - py) == 0) & ((pz - pz) == 0);  // inf - inf is NaN
+  return {dx * dx + dy * dy + dz * dz, out & finite, 1 - finite};
 }
 
 // Is particle i (after its second half kick) faster than sqrt(limit2), or is its velocity or spin
 // not finite?
-template <class Real> SM_HD std::uint32_t too_fast(Real vx, Real vy, Real vz, Real wx, Real wy, Real wz, Real limit2) {
+template <class Real>
+SM_HD LaneCount<Real> too_fast(Real vx, Real vy, Real vz, Real wx, Real wy, Real wz, Real limit2) {
   const Real v2 = vx * vx + vy * vy + vz * vz;
   const Real w2 = wx * wx + wy * wy + wz * wz;
-  return (!(v2 <= limit2) | !((w2 - w2) == 0)) ? 1u : 0u;  // NaN fails the comparison; inf - inf is NaN
+  return (!(v2 <= limit2) | !((w2 - w2) == 0)) ? 1 : 0;  // NaN fails the comparison; inf - inf is NaN
 }
-template <class Real> SM_HD std::uint32_t too_fast(const KickDrift<Real> &k, Real limit2, long long i) {
+template <class Real> SM_HD LaneCount<Real> too_fast(const KickDrift<Real> &k, Real limit2, long long i) {
   return too_fast(k.vx[i], k.vy[i], k.vz[i], k.wx[i], k.wy[i], k.wz[i], limit2);
 }
 
@@ -119,7 +124,7 @@ template <class Real> SM_HD std::uint32_t too_fast(const KickDrift<Real> &k, Rea
 // one that must keep NaN's semantics does not.
 template <class Real> struct DriftTally {
   using Bits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
-  std::uint32_t escaped = 0, nonfinite = 0;
+  LaneCount<Real> escaped = 0, nonfinite = 0;
   Bits largest_bits = 0;
   void add(const Drifted<Real> &d) {
     nonfinite += d.nonfinite;
@@ -129,8 +134,8 @@ template <class Real> struct DriftTally {
   }
   void add_to(KickDriftResult<Real> &result) const {
     const Real largest = std::bit_cast<Real>(largest_bits);
-    result.escaped += escaped;
-    result.nonfinite += nonfinite;
+    result.escaped += static_cast<std::uint32_t>(escaped);
+    result.nonfinite += static_cast<std::uint32_t>(nonfinite);
     result.largest = result.largest > largest ? result.largest : largest;
   }
 };
@@ -148,13 +153,13 @@ void kick_drift_range(const KickDrift<Real> &k, long long begin, long long end, 
 
 template <class Real, bool Rotate, bool Sleep>
 std::uint32_t kick_check_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end) {
-  std::uint32_t bad = 0;
+  LaneCount<Real> bad = 0;
 #pragma GCC ivdep
   for (long long i = begin; i < end; ++i) {
     half_kick<Real, Rotate, Sleep>(k, i);
     bad += too_fast(k, limit2, i);
   }
-  return bad;
+  return static_cast<std::uint32_t>(bad);
 }
 
 // The second half kick of one step and the first of the next in one pass: each particle is kicked,
@@ -165,7 +170,7 @@ template <class Real, bool PX, bool PY, bool PZ, bool Rotate>
 std::uint32_t kick_check_drift_range(const KickDrift<Real> &k, Real limit2, long long begin, long long end,
                                      KickDriftResult<Real> &result) {
   DriftTally<Real> tally;
-  std::uint32_t bad = 0;
+  LaneCount<Real> bad = 0;
   const Real h = k.half_dt;
 #pragma GCC ivdep
   for (long long i = begin; i < end; ++i) {
@@ -194,7 +199,7 @@ std::uint32_t kick_check_drift_range(const KickDrift<Real> &k, Real limit2, long
     tally.add(drift<Real, PX, PY, PZ>(k, i));
   }
   tally.add_to(result);
-  return bad;
+  return static_cast<std::uint32_t>(bad);
 }
 }  // namespace detail
 
