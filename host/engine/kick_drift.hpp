@@ -35,9 +35,10 @@ template <class Real> struct KickDriftResult {
 };
 
 namespace detail {
-// A count kept per particle in the loops below, as wide as Real: the vectorised loops then count in
-// the lanes of the positions, without packing each step's masks into 32-bit lanes.
-template <class Real> using LaneCount = std::conditional_t<sizeof(Real) == 8, std::uint64_t, std::uint32_t>;
+// Integers as wide as Real: a vectorised loop keeps them in the lanes of the positions. LaneCount
+// counts per particle (no packing of each step's masks into 32-bit lanes); LaneBits holds a float's bits.
+template <class Real> using LaneBits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
+template <class Real> using LaneCount = std::make_unsigned_t<LaneBits<Real>>;
 
 template <class Real, bool Periodic>
 SM_HD Real drift_axis(Real pos, Real v, Real dt, Real lo, Real hi, Real len, LaneCount<Real> &out) {
@@ -123,7 +124,7 @@ template <class Real> SM_HD LaneCount<Real> too_fast(const KickDrift<Real> &k, R
 // bit pattern (the same order for non-negative floats): an integer maximum vectorises, a floating
 // one that must keep NaN's semantics does not.
 template <class Real> struct DriftTally {
-  using Bits = std::conditional_t<sizeof(Real) == 8, std::int64_t, std::int32_t>;
+  using Bits = LaneBits<Real>;
   LaneCount<Real> escaped = 0, nonfinite = 0;
   Bits largest_bits = 0;
   void add(const Drifted<Real> &d) {
